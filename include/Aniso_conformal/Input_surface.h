@@ -1,0 +1,324 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INPUT_SURFACE_H
+#define ANISO_CONFORMAL_INPUT_SURFACE_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Surface_point.h>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <vector>
+
+/// \file Input_surface.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalMain
+ * an indexed, validated, read-only copy of the input triangle mesh: positions, faces, topology
+ * (Euler characteristic, boundary loops, genus), vertex normals and closest-point projection.
+ *
+ * Every stage works on this copy, so the user's mesh is never modified. Construction checks the
+ * input and throws `Invalid_input` with a message naming the offending vertex or face for: an empty
+ * mesh, a non-triangular face, a non-finite coordinate, an index out of range, a degenerate face, a
+ * non-manifold edge or vertex, inconsistent orientation, an isolated vertex, several connected
+ * components.
+ */
+class Input_surface {
+public:
+  /// index triple of a triangle
+  typedef std::array<std::size_t, 3> Face;
+
+  /// \name Creation
+  /// @{
+
+  /// builds the surface from a polygon soup of triangles (vertex positions, faces as index triples)
+  Input_surface(std::vector<Eigen::Vector3d> points, std::vector<Face> faces)
+    : m_points(std::move(points)), m_faces(std::move(faces))
+  {
+    validate_and_build();
+  }
+
+  /*!
+   * builds the surface from a model of `FaceListGraph` (e.g. `CGAL::Surface_mesh`, `CGAL::Polyhedron_3`).
+   * Vertex `i` of the copy is the vertex whose index is `i` in the vertex index map.
+   * \cgalNamedParamsBegin
+   *   \cgalParamNBegin{vertex_point_map} the positions; default: the internal `CGAL::vertex_point_t` map \cgalParamNEnd
+   *   \cgalParamNBegin{vertex_index_map} indices in `[0, num_vertices(tm))`; default: `get_initialized_vertex_index_map(tm)` \cgalParamNEnd
+   * \cgalNamedParamsEnd
+   */
+  template <typename TriangleMesh, typename NamedParameters = CGAL::parameters::Default_named_parameters>
+  static Input_surface from_mesh(const TriangleMesh& tm,
+                                 const NamedParameters& np = CGAL::parameters::default_values())
+  {
+    using CGAL::parameters::choose_parameter;
+    using CGAL::parameters::get_parameter;
+    auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                get_const_property_map(CGAL::vertex_point, tm));
+    auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+    std::vector<Eigen::Vector3d> pts(num_vertices(tm));
+    for(auto v : vertices(tm)) {
+      const auto& p = get(vpm, v);
+      pts[get(vim, v)] = Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    }
+    std::vector<Face> fs;
+    fs.reserve(num_faces(tm));
+    std::size_t fi = 0;
+    for(auto f : faces(tm)) {
+      Face t;
+      std::size_t k = 0;
+      for(auto v : CGAL::vertices_around_face(halfedge(f, tm), tm)) {
+        if(k < 3) t[k] = get(vim, v);
+        ++k;
+      }
+      if(k != 3)
+        throw Invalid_input("face " + std::to_string(fi) + " has " + std::to_string(k) +
+                            " vertices; the input must be a triangle mesh (triangulate it first)");
+      fs.push_back(t);
+      ++fi;
+    }
+    return Input_surface(std::move(pts), std::move(fs));
+  }
+  /// @}
+
+  /// \name Access
+  /// @{
+  std::size_t number_of_vertices() const { return m_points.size(); }                 ///< vertex count
+  std::size_t number_of_faces() const { return m_faces.size(); }                     ///< face count
+  const std::vector<Eigen::Vector3d>& points() const { return m_points; }           ///< vertex positions
+  const std::vector<Face>& faces() const { return m_faces; }                        ///< triangles (consistently oriented)
+  const std::vector<Eigen::Vector3d>& vertex_normals() const { return m_normals; }  ///< unit area-weighted normals
+  int euler_characteristic() const { return m_euler; }                              ///< V - E + F
+  /// boundary loops, each a cycle of vertex indices in the orientation of the faces
+  const std::vector<std::vector<std::size_t>>& boundary_loops() const { return m_loops; }
+  /// genus `(2 - chi - b) / 2`
+  int genus() const { return (2 - m_euler - int(m_loops.size())) / 2; }
+  /// `true` if the surface is a topological disk (one boundary loop, genus 0)
+  bool is_disk() const { return m_loops.size() == 1 && genus() == 0; }
+  /// `true` if the surface lies in the plane z = 0
+  bool is_planar() const { return m_planar; }
+  /// length of the diagonal of the bounding box
+  double bounding_box_diagonal() const { return m_diag; }
+  /// describes the topology in words, for messages ("a disk", "a closed surface of genus 1", ...)
+  std::string topology_description() const
+  {
+    if(m_loops.empty()) return "a closed surface of genus " + std::to_string(genus());
+    if(is_disk()) return "a topological disk";
+    return "a surface of genus " + std::to_string(genus()) + " with " + std::to_string(m_loops.size()) +
+           " boundary loops";
+  }
+  /// @}
+
+  /// \name Queries
+  /// @{
+  /// the point of face `f` with barycentric coordinates `b`
+  Surface_point point_in_face(std::size_t f, const Eigen::Vector3d& b) const
+  {
+    Surface_point sp;
+    sp.vertices = m_faces[f];
+    sp.barycentric = b;
+    sp.position = b[0] * m_points[m_faces[f][0]] + b[1] * m_points[m_faces[f][1]] + b[2] * m_points[m_faces[f][2]];
+    return sp;
+  }
+
+  /// the point of the surface closest to `p` (an AABB tree is built on first use)
+  Surface_point project(const Eigen::Vector3d& p) const
+  {
+    if(!m_tree) build_tree();
+    auto res = m_tree->closest_point_and_primitive(K::Point_3(p.x(), p.y(), p.z()));
+    std::size_t f = std::size_t(res.second - m_triangles.begin());
+    Eigen::Vector3d q(res.first.x(), res.first.y(), res.first.z());
+    return point_in_face(f, barycentric(f, q));
+  }
+
+  /// barycentric coordinates of `q` (assumed in the plane of face `f`), clamped to the triangle
+  Eigen::Vector3d barycentric(std::size_t f, const Eigen::Vector3d& q) const
+  {
+    const Eigen::Vector3d& a = m_points[m_faces[f][0]];
+    Eigen::Vector3d e1 = m_points[m_faces[f][1]] - a, e2 = m_points[m_faces[f][2]] - a, w = q - a;
+    double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), w1 = w.dot(e1), w2 = w.dot(e2);
+    double det = d11 * d22 - d12 * d12;
+    double b1 = (d22 * w1 - d12 * w2) / det, b2 = (d11 * w2 - d12 * w1) / det;
+    Eigen::Vector3d b(1 - b1 - b2, b1, b2);
+    b = b.cwiseMax(0.0);
+    return b / b.sum();
+  }
+  /// @}
+
+private:
+  typedef CGAL::Simple_cartesian<double> K;
+  typedef std::vector<K::Triangle_3>::const_iterator Tri_iterator;
+  typedef CGAL::AABB_triangle_primitive<K, Tri_iterator> Primitive;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> Tree;
+
+  void build_tree() const
+  {
+    m_triangles.clear();
+    for(const Face& f : m_faces) {
+      auto P = [&](std::size_t i) { return K::Point_3(m_points[i].x(), m_points[i].y(), m_points[i].z()); };
+      m_triangles.emplace_back(P(f[0]), P(f[1]), P(f[2]));
+    }
+    m_tree = std::make_shared<Tree>(m_triangles.begin(), m_triangles.end());
+    m_tree->accelerate_distance_queries();
+  }
+
+  static std::string edge_name(std::size_t a, std::size_t b)
+  {
+    return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
+  }
+
+  void validate_and_build()
+  {
+    const std::size_t nv = m_points.size();
+    if(nv == 0 || m_faces.empty()) throw Invalid_input("the input mesh is empty");
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for(std::size_t i = 0; i < nv; ++i) {
+      if(!m_points[i].allFinite()) throw Invalid_input("vertex " + std::to_string(i) + " has a non-finite coordinate");
+      lo = lo.cwiseMin(m_points[i]);
+      hi = hi.cwiseMax(m_points[i]);
+    }
+    m_diag = (hi - lo).norm();
+    m_planar = (lo.z() == 0 && hi.z() == 0);
+    std::vector<char> used(nv, 0);
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> directed;  // directed edge -> face
+    for(std::size_t f = 0; f < m_faces.size(); ++f) {
+      const Face& t = m_faces[f];
+      for(int k = 0; k < 3; ++k)
+        if(t[k] >= nv)
+          throw Invalid_input("face " + std::to_string(f) + " refers to vertex " + std::to_string(t[k]) +
+                              ", but there are only " + std::to_string(nv) + " vertices");
+      if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+        throw Invalid_input("face " + std::to_string(f) + " is degenerate (a repeated vertex)");
+      double area2 = (m_points[t[1]] - m_points[t[0]]).cross(m_points[t[2]] - m_points[t[0]]).norm();
+      if(!(area2 > 1e-14 * m_diag * m_diag))
+        throw Invalid_input("face " + std::to_string(f) + " is degenerate (zero area)");
+      for(int k = 0; k < 3; ++k) {
+        used[t[k]] = 1;
+        auto key = std::make_pair(t[k], t[(k + 1) % 3]);
+        auto it = directed.find(key);
+        if(it != directed.end()) {
+          if(directed.count(std::make_pair(key.second, key.first)))
+            throw Invalid_input("edge " + edge_name(key.first, key.second) +
+                                " is non-manifold (shared by more than two faces)");
+          throw Invalid_input("faces " + std::to_string(it->second) + " and " + std::to_string(f) +
+                              " have inconsistent orientation along edge " + edge_name(key.first, key.second));
+        }
+        directed.emplace(key, f);
+      }
+    }
+    // (an edge in three or more faces necessarily repeats a direction, so it was caught above)
+    std::map<std::pair<std::size_t, std::size_t>, int> undirected;
+    for(const auto& d : directed)
+      ++undirected[std::minmax(d.first.first, d.first.second)];
+    for(std::size_t i = 0; i < nv; ++i)
+      if(!used[i]) throw Invalid_input("vertex " + std::to_string(i) + " belongs to no face");
+
+    // Euler characteristic and boundary loops
+    m_euler = int(nv) - int(undirected.size()) + int(m_faces.size());
+    std::map<std::size_t, std::vector<std::size_t>> boundary_next;  // boundary halfedge tail -> heads
+    for(const auto& d : directed)
+      if(!directed.count(std::make_pair(d.first.second, d.first.first)))
+        // boundary edges run opposite to the face orientation on the outside; keep the face direction
+        boundary_next[d.first.first].push_back(d.first.second);
+    for(const auto& b : boundary_next)
+      if(b.second.size() > 1)
+        throw Invalid_input("vertex " + std::to_string(b.first) + " is non-manifold (it touches the boundary " +
+                            std::to_string(b.second.size()) + " times)");
+    std::map<std::size_t, char> visited;
+    for(const auto& b : boundary_next) {
+      if(visited.count(b.first)) continue;
+      std::vector<std::size_t> loop;
+      std::size_t v = b.first;
+      while(!visited.count(v)) {
+        visited[v] = 1;
+        loop.push_back(v);
+        auto it = boundary_next.find(v);
+        if(it == boundary_next.end()) break;
+        v = it->second.front();
+      }
+      m_loops.push_back(loop);
+    }
+
+    // vertex manifoldness: the faces around each vertex must form a single fan; two faces at v are
+    // neighbours when the vertex before v in one is the vertex after v in the other
+    std::vector<std::vector<std::size_t>> vfaces(nv);
+    for(std::size_t f = 0; f < m_faces.size(); ++f)
+      for(int k = 0; k < 3; ++k) vfaces[m_faces[f][k]].push_back(f);
+    for(std::size_t v = 0; v < nv; ++v) {
+      const auto& fs = vfaces[v];
+      auto corner = [&](std::size_t f) { const Face& t = m_faces[f]; return t[0] == v ? 0 : (t[1] == v ? 1 : 2); };
+      std::map<std::size_t, std::size_t> by_next;  // vertex after v -> local face index
+      for(std::size_t i = 0; i < fs.size(); ++i) by_next[m_faces[fs[i]][(corner(fs[i]) + 1) % 3]] = i;
+      std::vector<std::size_t> up(fs.size());
+      std::iota(up.begin(), up.end(), 0);
+      auto root = [&](std::size_t x) { while(up[x] != x) x = up[x] = up[up[x]]; return x; };
+      std::size_t fans = fs.size();
+      for(std::size_t i = 0; i < fs.size(); ++i) {
+        auto it = by_next.find(m_faces[fs[i]][(corner(fs[i]) + 2) % 3]);
+        if(it == by_next.end()) continue;
+        std::size_t a = root(i), b = root(it->second);
+        if(a != b) { up[a] = b; --fans; }
+      }
+      if(fans != 1)
+        throw Invalid_input("vertex " + std::to_string(v) + " is non-manifold (its faces form " +
+                            std::to_string(fans) + " separate fans)");
+    }
+
+    // connected components (union-find over faces' vertices)
+    std::vector<std::size_t> parent(nv);
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](std::size_t x) {
+      while(parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for(const Face& t : m_faces) {
+      parent[find(t[1])] = find(t[0]);
+      parent[find(t[2])] = find(t[0]);
+    }
+    std::size_t components = 0;
+    for(std::size_t i = 0; i < nv; ++i)
+      if(find(i) == i) ++components;
+    if(components != 1)
+      throw Invalid_input("the input mesh has " + std::to_string(components) +
+                          " connected components; remesh them one at a time");
+
+    m_normals.assign(nv, Eigen::Vector3d::Zero());
+    for(const Face& t : m_faces) {
+      Eigen::Vector3d n = (m_points[t[1]] - m_points[t[0]]).cross(m_points[t[2]] - m_points[t[0]]);
+      for(int k = 0; k < 3; ++k) m_normals[t[k]] += n;
+    }
+    for(auto& n : m_normals) n.normalize();
+  }
+
+  std::vector<Eigen::Vector3d> m_points;
+  std::vector<Face> m_faces;
+  std::vector<Eigen::Vector3d> m_normals;
+  std::vector<std::vector<std::size_t>> m_loops;
+  int m_euler = 0;
+  double m_diag = 0;
+  bool m_planar = false;
+  mutable std::vector<K::Triangle_3> m_triangles;
+  mutable std::shared_ptr<Tree> m_tree;
+};
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INPUT_SURFACE_H

@@ -1,0 +1,273 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTRINSIC_TRIANGULATION_H
+#define ANISO_CONFORMAL_INTRINSIC_TRIANGULATION_H
+
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Surface_point.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+/// \file Intrinsic_triangulation.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * the background triangulation the pipeline works on: a triangulation whose vertices are points of
+ * the input surface (input vertices, or points inserted by edge splits), with per-vertex metric square
+ * roots `Q = M^{1/2}` and per-edge lengths measured in the metric.
+ *
+ * It starts as a copy of the input's connectivity; `adjust_edge_lengths()` flips and splits it.
+ * Halfedges are implicit: halfedge `h = 3 f + k` runs from corner `k` to corner `k + 1` of face `f`,
+ * `twin(h)` is the opposite halfedge or `-1` on the boundary (geometry-central's compact layout).
+ * Faces keep a consistent orientation. `validate()` checks every invariant.
+ */
+class Intrinsic_triangulation {
+public:
+  /// \name Creation
+  /// @{
+  /// copies the connectivity and positions of `surface`; `Q[i]` is the metric square root at input vertex `i`
+  Intrinsic_triangulation(const Input_surface& surface, std::vector<Eigen::Matrix3d> Q) : m_Q(std::move(Q))
+  {
+    const std::size_t nv = surface.number_of_vertices();
+    m_points.reserve(nv);
+    for(std::size_t i = 0; i < nv; ++i) m_points.push_back(Surface_point::at_vertex(i, surface.points()[i]));
+    m_input_vertex.resize(nv);
+    for(std::size_t i = 0; i < nv; ++i) m_input_vertex[i] = int(i);
+    m_corner.assign(nv, 0);
+    for(const auto& f : surface.faces()) m_faces.push_back({{int(f[0]), int(f[1]), int(f[2])}});
+    m_twin.assign(3 * m_faces.size(), -1);
+    m_length.assign(3 * m_faces.size(), std::numeric_limits<double>::quiet_NaN());
+    std::map<std::pair<int, int>, int> by_ends;
+    for(int h = 0; h < int(m_twin.size()); ++h) by_ends[{tail(h), head(h)}] = h;
+    for(int h = 0; h < int(m_twin.size()); ++h) {
+      auto it = by_ends.find({head(h), tail(h)});
+      if(it != by_ends.end()) m_twin[h] = it->second;
+    }
+    m_out.assign(nv, -1);
+    for(int h = 0; h < int(m_twin.size()); ++h) m_out[tail(h)] = h;
+  }
+  /// @}
+
+  /// \name Connectivity
+  /// @{
+  static int next(int h) { return h % 3 == 2 ? h - 2 : h + 1; }                     ///< next halfedge in the face
+  static int prev(int h) { return h % 3 == 0 ? h + 2 : h - 1; }                     ///< previous halfedge in the face
+  static int face(int h) { return h / 3; }                                          ///< face of a halfedge
+  int tail(int h) const { return m_faces[h / 3][h % 3]; }                           ///< vertex the halfedge leaves
+  int head(int h) const { return m_faces[h / 3][(h % 3 + 1) % 3]; }                 ///< vertex the halfedge enters
+  int opposite_vertex(int h) const { return m_faces[h / 3][(h % 3 + 2) % 3]; }       ///< third vertex of h's face
+  int twin(int h) const { return m_twin[h]; }                                       ///< opposite halfedge, -1 on the boundary
+  bool is_boundary_edge(int h) const { return m_twin[h] < 0; }                      ///< `true` if h has no twin
+  std::size_t number_of_vertices() const { return m_points.size(); }                ///< vertex count
+  std::size_t number_of_faces() const { return m_faces.size(); }                    ///< face count
+  std::size_t number_of_halfedges() const { return m_twin.size(); }                 ///< 3 x face count
+  const std::array<int, 3>& face_vertices(std::size_t f) const { return m_faces[f]; } ///< corners of a face
+  /// one halfedge per edge (the one with the larger index is skipped)
+  bool is_edge_representative(int h) const { return m_twin[h] < 0 || m_twin[h] > h; }
+  /// the outgoing halfedges of `v` in counterclockwise order; for a boundary vertex the first one is on the boundary
+  std::vector<int> outgoing_halfedges(int v) const
+  {
+    std::vector<int> out;
+    int h0 = m_out[v];
+    // rotate clockwise to the boundary (or once around)
+    int h = h0;
+    while(true) {
+      int t = m_twin[h];
+      if(t < 0) break;
+      int g = next(t);
+      if(g == h0) break;
+      h = g;
+    }
+    int start = h;
+    do {
+      out.push_back(h);
+      int p = m_twin[prev(h)];
+      if(p < 0) break;
+      h = p;
+    } while(h != start && out.size() <= m_twin.size());
+    return out;
+  }
+  /// `true` if `v` lies on the boundary
+  bool is_boundary_vertex(int v) const
+  {
+    for(int h : outgoing_halfedges(v))
+      if(m_twin[h] < 0 || m_twin[prev(h)] < 0) return true;
+    return false;
+  }
+  /// the halfedge from `a` to `b`, or -1
+  int find_halfedge(int a, int b) const
+  {
+    for(int h : outgoing_halfedges(a))
+      if(head(h) == b) return h;
+    return -1;
+  }
+  /// @}
+
+  /// \name Geometry and metric
+  /// @{
+  const Surface_point& point(int v) const { return m_points[v]; }                   ///< where the vertex lies on the input
+  const Eigen::Vector3d& position(int v) const { return m_points[v].position; }     ///< its position in space
+  const Eigen::Matrix3d& Q(int v) const { return m_Q[v]; }                          ///< metric square root at the vertex
+  /// index of the input vertex this vertex copies, or -1 for an inserted vertex
+  int input_vertex(int v) const { return m_input_vertex[v]; }
+  double length(int h) const { return m_length[h]; }                                ///< metric length of the edge of h
+  /// sets the length of the edge of `h` (both halfedges)
+  void set_length(int h, double l)
+  {
+    m_length[h] = l;
+    if(m_twin[h] >= 0) m_length[m_twin[h]] = l;
+  }
+  /// marks `v` as a boundary corner (kept as an output vertex)
+  void set_corner(int v, bool c) { m_corner[v] = c; }
+  bool is_corner(int v) const { return m_corner[v] != 0; }                           ///< `true` for a boundary corner
+  /// @}
+
+  /// \name Modification
+  /// @{
+  /*!
+   * flips the interior edge of `h`: the two triangles `(a,b,c)` and `(b,a,d)` become `(c,a,d)` and
+   * `(d,b,c)`. Returns the halfedge from `d` to `c`. The new edge length is left to the caller.
+   */
+  int flip(int h)
+  {
+    int t = m_twin[h];
+    if(t < 0) throw std::logic_error("Intrinsic_triangulation::flip(): boundary edge");
+    int f0 = face(h), f1 = face(t);
+    int a = tail(h), b = head(h), c = opposite_vertex(h), d = opposite_vertex(t);
+    int hbc = next(h), hca = prev(h), had = next(t), hdb = prev(t);
+    int Tbc = m_twin[hbc], Tca = m_twin[hca], Tad = m_twin[had], Tdb = m_twin[hdb];
+    double Lbc = m_length[hbc], Lca = m_length[hca], Lad = m_length[had], Ldb = m_length[hdb];
+    m_faces[f0] = {{c, a, d}};
+    m_faces[f1] = {{d, b, c}};
+    auto set = [&](int he, int tw, double len) {
+      m_twin[he] = tw;
+      if(tw >= 0) m_twin[tw] = he;
+      m_length[he] = len;
+    };
+    set(3 * f0 + 0, Tca, Lca);
+    set(3 * f0 + 1, Tad, Lad);
+    set(3 * f1 + 0, Tdb, Ldb);
+    set(3 * f1 + 1, Tbc, Lbc);
+    m_twin[3 * f0 + 2] = 3 * f1 + 2;
+    m_twin[3 * f1 + 2] = 3 * f0 + 2;
+    m_length[3 * f0 + 2] = m_length[3 * f1 + 2] = std::numeric_limits<double>::quiet_NaN();
+    m_out[c] = 3 * f0 + 0;
+    m_out[a] = 3 * f0 + 1;
+    m_out[d] = 3 * f1 + 0;
+    m_out[b] = 3 * f1 + 1;
+    return 3 * f0 + 2;
+  }
+
+  /*!
+   * splits the edge of `h` at the new vertex `p` (with metric square root `Q`), splitting its one or two
+   * triangles in two. Returns the new vertex. The lengths of the new edges are left to the caller.
+   */
+  int split(int h, const Surface_point& p, const Eigen::Matrix3d& Q)
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    int t = m_twin[h];
+    int m = int(m_points.size());
+    m_points.push_back(p);
+    m_Q.push_back(Q);
+    m_input_vertex.push_back(-1);
+    m_corner.push_back(0);
+    m_out.push_back(-1);
+    int f0 = face(h);
+    int a = tail(h), b = head(h), c = opposite_vertex(h);
+    int Tbc = m_twin[next(h)], Tca = m_twin[prev(h)];
+    double Lbc = m_length[next(h)], Lca = m_length[prev(h)];
+    int f2 = int(m_faces.size());
+    m_faces.push_back({{m, b, c}});
+    m_twin.resize(3 * m_faces.size(), -1);
+    m_length.resize(3 * m_faces.size(), nan);
+    m_faces[f0] = {{a, m, c}};
+    auto link = [&](int x, int y) {
+      m_twin[x] = y;
+      if(y >= 0) m_twin[y] = x;
+    };
+    // f0 = (a, m, c), f2 = (m, b, c)
+    link(3 * f0 + 1, 3 * f2 + 2);  // m->c / c->m
+    link(3 * f0 + 2, Tca);
+    m_length[3 * f0 + 2] = Lca;
+    link(3 * f2 + 1, Tbc);
+    m_length[3 * f2 + 1] = Lbc;
+    m_length[3 * f0 + 0] = m_length[3 * f0 + 1] = m_length[3 * f2 + 0] = m_length[3 * f2 + 2] = nan;
+    if(t >= 0) {
+      int f1 = face(t);
+      int d = opposite_vertex(t);
+      int Tad = m_twin[next(t)], Tdb = m_twin[prev(t)];
+      double Lad = m_length[next(t)], Ldb = m_length[prev(t)];
+      int f3 = int(m_faces.size());
+      m_faces.push_back({{m, a, d}});
+      m_twin.resize(3 * m_faces.size(), -1);
+      m_length.resize(3 * m_faces.size(), nan);
+      m_faces[f1] = {{b, m, d}};
+      // f1 = (b, m, d), f3 = (m, a, d)
+      link(3 * f1 + 0, 3 * f2 + 0);  // b->m / m->b
+      link(3 * f1 + 1, 3 * f3 + 2);  // m->d / d->m
+      link(3 * f1 + 2, Tdb);
+      m_length[3 * f1 + 2] = Ldb;
+      link(3 * f3 + 0, 3 * f0 + 0);  // m->a / a->m
+      link(3 * f3 + 1, Tad);
+      m_length[3 * f3 + 1] = Lad;
+      m_length[3 * f1 + 0] = m_length[3 * f1 + 1] = m_length[3 * f3 + 0] = m_length[3 * f3 + 2] = nan;
+      m_out[d] = 3 * f3 + 2;
+    } else {
+      m_twin[3 * f0 + 0] = -1;
+      m_twin[3 * f2 + 0] = -1;
+    }
+    m_out[a] = 3 * f0 + 0;
+    m_out[b] = 3 * f2 + 1;
+    m_out[c] = 3 * f0 + 2;
+    m_out[m] = 3 * f2 + 0;
+    return m;
+  }
+  /// @}
+
+  /// \name Checks
+  /// @{
+  /// throws `std::logic_error` if an invariant is broken (twins, orientation, vertex halfedges, lengths if `with_lengths`)
+  void validate(bool with_lengths = false) const
+  {
+    for(int h = 0; h < int(m_twin.size()); ++h) {
+      int t = m_twin[h];
+      if(t >= 0) {
+        if(m_twin[t] != h) throw std::logic_error("twin(twin(h)) != h at halfedge " + std::to_string(h));
+        if(tail(t) != head(h) || head(t) != tail(h))
+          throw std::logic_error("twins with inconsistent ends at halfedge " + std::to_string(h));
+        if(with_lengths && m_length[t] != m_length[h])
+          throw std::logic_error("twins with different lengths at halfedge " + std::to_string(h));
+      }
+      if(with_lengths && !(m_length[h] > 0)) throw std::logic_error("invalid length at halfedge " + std::to_string(h));
+    }
+    for(int v = 0; v < int(m_points.size()); ++v)
+      if(m_out[v] < 0 || tail(m_out[v]) != v)
+        throw std::logic_error("vertex " + std::to_string(v) + " has no valid outgoing halfedge");
+  }
+  /// @}
+
+private:
+  std::vector<Surface_point> m_points;
+  std::vector<Eigen::Matrix3d> m_Q;
+  std::vector<int> m_input_vertex;
+  std::vector<char> m_corner;
+  std::vector<std::array<int, 3>> m_faces;
+  std::vector<int> m_twin;
+  std::vector<double> m_length;
+  std::vector<int> m_out;
+};
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTRINSIC_TRIANGULATION_H

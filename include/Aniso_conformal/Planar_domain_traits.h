@@ -1,0 +1,611 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_PLANAR_DOMAIN_TRAITS_H
+#define ANISO_CONFORMAL_PLANAR_DOMAIN_TRAITS_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/conformal_embedding.h>
+#include <Aniso_conformal/internal/CVT/clip_integrate.h>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <list>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+/// \file Planar_domain_traits.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalDomains
+ * \cgalModels `ParametricDomainTraits`
+ * the planar domain of a disk-topology surface or a 2D domain: the background triangulation laid out
+ * by `conformal_embedding()`, with the CVT density `cf^2` linear over each background triangle.
+ *
+ * Sites are ordered: the first `number_of_fixed_sites()` lie on the boundary (boundary corners, then
+ * the others, in boundary order) and stay fixed; the rest move freely inside. The boundary sites are a
+ * 1D CVT of the boundary: with `u = 0` on the boundary the layout keeps the boundary's metric length,
+ * so they are spaced evenly in arclength between consecutive corners, at the spacing the requested
+ * number of vertices implies for an equilateral mesh of the adjusted area (DESIGN.md 3).
+ *
+ * Integration is exact: each background triangle is clipped against the Voronoi cells it meets (a
+ * restricted Voronoi diagram, found by walking the Delaunay graph from the site nearest to a corner),
+ * and the mass, first moment and energy of the linear density over each piece have closed forms.
+ */
+class Planar_domain_traits {
+public:
+  /// \name Types
+  /// @{
+  typedef Eigen::Vector2d Point;  ///< a point of the domain
+  /// integrals of the density over one Voronoi cell restricted to the domain
+  struct Cell {
+    double mass = 0;                          ///< integral of rho
+    Point centroid = Point::Zero();           ///< (integral of rho y) / mass, or the site when the mass is 0
+    double energy = 0;                        ///< integral of rho |y - site|^2
+  };
+  /// where a boundary site lies: on halfedge `halfedge` of the background, at parameter `t` from its tail
+  struct Boundary_location {
+    int halfedge = -1;   ///< boundary halfedge of the `Intrinsic_triangulation`
+    double t = 0;        ///< parameter along it in [0, 1]
+  };
+  /// @}
+
+  /// \name Creation
+  /// @{
+  /// lays out the background of `itri` with the embedding `emb`; `threads` workers integrate (0 = hardware)
+  Planar_domain_traits(const Intrinsic_triangulation& itri, const Planar_embedding& emb, unsigned threads = 0)
+    : m_itri(itri)
+  {
+    const std::size_t nf = itri.number_of_faces();
+    m_tri.resize(nf);
+    const std::vector<std::size_t> order = morton_order(itri, emb);
+    for(std::size_t i = 0; i < nf; ++i) {
+      const std::size_t f = order[i];
+      const auto& c = itri.face_vertices(f);
+      Background_triangle& T = m_tri[i];
+      T.face = int(f);
+      for(int k = 0; k < 3; ++k) {
+        T.p[k] = emb.uv[c[k]];
+        T.rho[k] = emb.conformal_factor[c[k]] * emb.conformal_factor[c[k]];
+      }
+      // affine density rho(y) = r0 + rg.y through the three corners
+      Eigen::Matrix3d A;
+      for(int k = 0; k < 3; ++k) A.row(k) << 1, T.p[k].x(), T.p[k].y();
+      Eigen::Vector3d coef = A.fullPivLu().solve(Eigen::Vector3d(T.rho[0], T.rho[1], T.rho[2]));
+      T.r0 = coef[0];
+      T.rg = Eigen::Vector2d(coef[1], coef[2]);
+      const Eigen::Vector2d e1 = T.p[1] - T.p[0], e2 = T.p[2] - T.p[0];
+      T.area = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+      m_total_mass += T.area * (T.rho[0] + T.rho[1] + T.rho[2]) / 3.0;
+      T.g = (T.p[0] + T.p[1] + T.p[2]) / 3.0;
+      internal::Cell_accumulator whole;
+      internal::integrate_polygon(std::vector<Eigen::Vector2d>(T.p.begin(), T.p.end()), T.r0, T.rg, T.g, whole);
+      T.mass = whole.mass;
+      T.central = whole.energy;
+      T.first = Eigen::Vector2d(whole.mx, whole.my) - whole.mass * T.g;
+      m_area += T.area;
+    }
+    build_grid();
+    build_boundary();
+    m_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  }
+  /// @}
+
+  /// \name Domain
+  /// @{
+  /// integral of the density over the domain
+  double total_mass() const { return m_total_mass; }
+  /// area of the domain
+  double area() const { return m_area; }
+  /// the boundary loop as background vertices, counterclockwise (the domain is on the left)
+  const std::vector<int>& boundary_vertices() const { return m_boundary; }
+  /// the domain position of background vertex `v`
+  Point position(int v) const { return m_uv_of_vertex[v]; }
+  /// finds the background face containing `p` and the barycentric coordinates of `p` in it; `false` if outside
+  bool locate(const Point& p, int& face, Eigen::Vector3d& bary, double tolerance = 1e-9) const
+  {
+    const int gx = cell_x(p.x()), gy = cell_y(p.y());
+    if(gx < 0 || gy < 0) return false;
+    double best = -1e300;
+    for(int f : m_grid[gy * m_nx + gx]) {
+      const Eigen::Vector3d b = barycentric(f, p);
+      const double m = b.minCoeff();
+      if(m > best) {
+        best = m;
+        face = m_tri[f].face;
+        bary = b;
+      }
+      if(m >= 0) break;
+    }
+    if(best < -tolerance) return false;
+    bary = bary.cwiseMax(0.0);
+    bary /= bary.sum();
+    return true;
+  }
+  /// `true` if `p` is in the domain
+  bool contains(const Point& p) const
+  {
+    int f;
+    Eigen::Vector3d b;
+    return locate(p, f, b, 0.0);
+  }
+  /// @}
+
+  /// \name Sites
+  /// @{
+  /*!
+   * places `n` sites: the boundary sites first (fixed) at the spacing `n` implies, then `n - fixed`
+   * interior sites sampled with probability proportional to the density (deterministic for a `seed`).
+   * `adjusted_area` is the area of the background in the metric (sum of Heron areas of the adjusted lengths).
+   * \throws Invalid_input if `n` is smaller than the number of corners plus one or too large for the background
+   */
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed, double adjusted_area)
+  {
+    std::size_t corners = 0;
+    for(int v : m_boundary)
+      if(m_itri.is_corner(v)) ++corners;
+    if(n < std::max<std::size_t>(3, corners))
+      throw Invalid_input("the output needs at least " + std::to_string(std::max<std::size_t>(3, corners)) +
+                          " vertices (the boundary has " + std::to_string(corners) + " corners); " +
+                          std::to_string(n) + " were requested");
+    // spacing h of an equilateral mesh with n vertices, nb = P/h of them on the boundary, covering the area
+    const double c = std::sqrt(3.0) / 4, P = m_perimeter, A = adjusted_area * (m_perimeter_metric_ratio);
+    const double nn = std::max(1.0, double(n) - 1);
+    const double h = (c * P + std::sqrt(c * c * P * P + 8 * c * nn * A)) / (4 * c * nn);
+    place_boundary_sites(h, n);
+    m_sites_fixed = m_boundary_sites.size();
+    std::vector<Point> sites;
+    for(const auto& b : m_boundary_sites) sites.push_back(boundary_point(b));
+    // interior: sample background triangles by mass, then a uniform point inside, kept off the boundary
+    std::mt19937_64 rng(seed);
+    std::vector<double> cdf(m_tri.size());
+    double acc = 0;
+    for(std::size_t f = 0; f < m_tri.size(); ++f) {
+      acc += m_tri[f].area * (m_tri[f].rho[0] + m_tri[f].rho[1] + m_tri[f].rho[2]);
+      cdf[f] = acc;
+    }
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    while(sites.size() < n) {
+      const double r = U(rng) * acc;
+      const std::size_t f = std::size_t(std::lower_bound(cdf.begin(), cdf.end(), r) - cdf.begin());
+      double a = U(rng), b = U(rng);
+      if(a + b > 1) { a = 1 - a; b = 1 - b; }
+      // shrink towards the centroid so no site starts on an edge of the domain
+      const Background_triangle& T = m_tri[std::min(f, m_tri.size() - 1)];
+      const Point g = (T.p[0] + T.p[1] + T.p[2]) / 3.0;
+      const Point p = T.p[0] + a * (T.p[1] - T.p[0]) + b * (T.p[2] - T.p[0]);
+      sites.push_back(g + 0.98 * (p - g));
+    }
+    return sites;
+  }
+  /// the number of fixed (boundary) sites placed by the last `initial_sites()`
+  std::size_t number_of_fixed_sites() const { return m_sites_fixed; }
+  /// where boundary site `i` (`i < number_of_fixed_sites()`) lies on the background boundary
+  const Boundary_location& boundary_location(std::size_t i) const { return m_boundary_sites[i]; }
+  /// the background vertex at boundary site `i` if it sits exactly on one (corners), else -1
+  int boundary_site_vertex(std::size_t i) const
+  {
+    const Boundary_location& b = m_boundary_sites[i];
+    if(b.t == 0) return m_itri.tail(b.halfedge);
+    if(b.t == 1) return m_itri.head(b.halfedge);
+    return -1;
+  }
+  /// moves `p` towards `target` as far as it stays in the domain (bisection); returns the new position
+  Point move_towards(const Point& p, const Point& target) const
+  {
+    if(contains(target)) return target;
+    Point lo = p, hi = target;
+    for(int k = 0; k < 30; ++k) {
+      const Point mid = 0.5 * (lo + hi);
+      if(contains(mid)) lo = mid; else hi = mid;
+    }
+    return lo;
+  }
+  /// @}
+
+  /// \name Integration
+  /// @{
+  /// computes mass, centroid and energy of the restricted Voronoi cell of every site
+  void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const
+  {
+    const std::size_t ns = sites.size();
+    DT dt;
+    std::vector<std::pair<K::Point_2, int>> pts;
+    pts.reserve(ns);
+    for(std::size_t i = 0; i < ns; ++i) pts.emplace_back(K::Point_2(sites[i].x(), sites[i].y()), int(i));
+    dt.insert(pts.begin(), pts.end());
+    std::vector<DT::Vertex_handle> handle(ns);
+    for(auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) handle[v->info()] = v;
+    // Delaunay neighbours in CSR form; coincident sites keep an empty cell
+    std::vector<int> start(ns + 1, 0), nbr;
+    for(std::size_t i = 0; i < ns; ++i) {
+      start[i] = int(nbr.size());
+      if(handle[i] == DT::Vertex_handle() || handle[i]->info() != int(i)) continue;
+      auto c = dt.incident_vertices(handle[i]), done = c;
+      if(c != nullptr) do {
+        if(!dt.is_infinite(c)) nbr.push_back(c->info());
+      } while(++c != done);
+    }
+    start[ns] = int(nbr.size());
+
+    // fixed chunks summed in order: the result does not depend on the number of threads
+    const std::size_t chunks = 16, nf = m_tri.size();
+    std::vector<std::vector<internal::Cell_accumulator>> acc(chunks, std::vector<internal::Cell_accumulator>(ns));
+    int any_site = 0;
+    while(any_site < int(ns) && start[any_site] == start[any_site + 1] && ns > 1) ++any_site;
+    auto work = [&](std::size_t chunk) {
+      std::vector<int> stamp(ns, -1), stack;
+      std::vector<Eigen::Vector2d> poly, tmp;
+      int seed = any_site;
+      for(std::size_t f = chunk * nf / chunks; f < (chunk + 1) * nf / chunks; ++f) {
+        const Background_triangle& T = m_tri[f];
+        // greedy walk on the Delaunay graph to the site nearest to a corner (exact for Delaunay graphs);
+        // triangles are in Morton order, so the previous seed is close
+        double best = (sites[seed] - T.p[0]).squaredNorm();
+        for(bool moved = true; moved;) {
+          moved = false;
+          for(int j = start[seed]; j < start[seed + 1]; ++j) {
+            const double d = (sites[nbr[j]] - T.p[0]).squaredNorm();
+            if(d < best) { best = d; seed = nbr[j]; moved = true; break; }
+          }
+        }
+        stack.assign(1, seed);
+        stamp[seed] = int(f);
+        while(!stack.empty()) {
+          const int s = stack.back();
+          stack.pop_back();
+          poly.assign(T.p.begin(), T.p.end());
+          const Eigen::Vector2d& ps = sites[s];
+          bool clipped = false;
+          for(int j = start[s]; j < start[s + 1] && !poly.empty(); ++j) {
+            const Eigen::Vector2d& pn = sites[nbr[j]];
+            const Eigen::Vector2d a = 2.0 * (pn - ps);
+            const double b = pn.squaredNorm() - ps.squaredNorm();
+            bool cuts = false;
+            for(const auto& q : poly) cuts = cuts || a.dot(q) > b;
+            if(!cuts) continue;
+            clipped = true;
+            internal::clip_half_plane(poly, a, b, tmp);
+            poly.swap(tmp);
+          }
+          if(poly.size() < 3) continue;
+          if(clipped) {
+            internal::integrate_polygon(poly, T.r0, T.rg, ps, acc[chunk][s]);
+          } else {
+            // the whole triangle is in the cell: parallel-axis theorem on the precomputed moments
+            internal::Cell_accumulator& A = acc[chunk][s];
+            const Eigen::Vector2d d = T.g - ps;
+            A.mass += T.mass;
+            A.mx += T.first.x() + T.mass * T.g.x();
+            A.my += T.first.y() + T.mass * T.g.y();
+            A.energy += T.central + 2 * d.dot(T.first) + d.squaredNorm() * T.mass;
+            continue;  // no neighbour's cell meets T
+          }
+          for(int j = start[s]; j < start[s + 1]; ++j) {
+            const int n = nbr[j];
+            if(stamp[n] == int(f)) continue;
+            // n's cell can meet T only if a corner of T is closer to n than to s
+            const Eigen::Vector2d a = 2.0 * (sites[n] - ps);
+            const double b = sites[n].squaredNorm() - ps.squaredNorm();
+            if(a.dot(T.p[0]) <= b && a.dot(T.p[1]) <= b && a.dot(T.p[2]) <= b) continue;
+            stamp[n] = int(f);
+            stack.push_back(n);
+          }
+        }
+      }
+    };
+    run_chunks(chunks, work);
+    cells.assign(ns, Cell());
+    for(std::size_t i = 0; i < ns; ++i) {
+      internal::Cell_accumulator a;
+      for(std::size_t c = 0; c < chunks; ++c) {
+        a.mass += acc[c][i].mass;
+        a.mx += acc[c][i].mx;
+        a.my += acc[c][i].my;
+        a.energy += acc[c][i].energy;
+      }
+      cells[i].mass = a.mass;
+      cells[i].energy = a.energy;
+      cells[i].centroid = a.mass > 0 ? Point(a.mx / a.mass, a.my / a.mass) : sites[i];
+    }
+  }
+  /// @}
+
+  /// \name Dual mesh
+  /// @{
+  /*!
+   * the Delaunay triangulation of `sites` constrained to the polygon of the boundary sites (the first
+   * `number_of_fixed_sites()`, in boundary order), restricted to the inside: triangles as index triples,
+   * counterclockwise. \throws Convergence_failure if a site is not a vertex of the result
+   */
+  std::vector<std::array<std::size_t, 3>> dual_triangles(const std::vector<Point>& sites) const
+  {
+    CDT cdt;
+    std::vector<CDT::Vertex_handle> vh(sites.size());
+    for(std::size_t i = 0; i < sites.size(); ++i) {
+      const std::size_t before = cdt.number_of_vertices();
+      vh[i] = cdt.insert(K::Point_2(sites[i].x(), sites[i].y()));
+      if(cdt.number_of_vertices() == before)
+        throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with another site", 0);
+      vh[i]->info() = int(i);
+    }
+    const std::size_t nb = m_sites_fixed;
+    for(std::size_t i = 0; i < nb; ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % nb]);
+    if(cdt.number_of_vertices() != sites.size())
+      throw Convergence_failure("dual mesh: the boundary polygon of the sites intersects itself", 0);
+    // faces inside the boundary polygon: reached from the infinite face by crossing one constraint
+    for(auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+    std::list<CDT::Face_handle> border;
+    auto flood = [&](CDT::Face_handle start, int level) {
+      std::list<CDT::Face_handle> q(1, start);
+      while(!q.empty()) {
+        CDT::Face_handle f = q.front();
+        q.pop_front();
+        if(f->info() != -1) continue;
+        f->info() = level;
+        for(int i = 0; i < 3; ++i) {
+          CDT::Face_handle g = f->neighbor(i);
+          if(g->info() != -1) continue;
+          if(cdt.is_constrained(CDT::Edge(f, i))) border.push_back(g); else q.push_back(g);
+        }
+      }
+    };
+    flood(cdt.infinite_face(), 0);
+    while(!border.empty()) {
+      CDT::Face_handle f = border.front();
+      border.pop_front();
+      if(f->info() == -1) flood(f, 1);
+    }
+    std::vector<std::array<std::size_t, 3>> tris;
+    std::vector<char> used(sites.size(), 0);
+    for(auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+      if(f->info() % 2 != 1) continue;
+      std::array<std::size_t, 3> t;
+      for(int k = 0; k < 3; ++k) {
+        const int id = f->vertex(k)->info();
+        t[k] = std::size_t(id);
+        used[id] = 1;
+      }
+      tris.push_back(t);
+    }
+    for(std::size_t i = 0; i < sites.size(); ++i)
+      if(!used[i])
+        throw Convergence_failure("dual mesh: site " + std::to_string(i) +
+                                      " lies outside the polygon of the boundary sites",
+                                  0);
+    return tris;
+  }
+  /// @}
+
+private:
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+  typedef CGAL::Triangulation_vertex_base_with_info_2<int, K> Vb;
+  typedef CGAL::Triangulation_data_structure_2<Vb> Tds;
+  typedef CGAL::Delaunay_triangulation_2<K, Tds> DT;
+  typedef CGAL::Triangulation_vertex_base_with_info_2<int, K> CVb;
+  typedef CGAL::Constrained_triangulation_face_base_2<K> CFb0;
+  typedef CGAL::Triangulation_face_base_with_info_2<int, K, CFb0> CFb;
+  typedef CGAL::Triangulation_data_structure_2<CVb, CFb> CTds;
+  typedef CGAL::Constrained_Delaunay_triangulation_2<K, CTds, CGAL::Exact_predicates_tag> CDT;
+
+  struct Background_triangle {
+    std::array<Eigen::Vector2d, 3> p;
+    std::array<double, 3> rho;
+    int face = -1;  // index in the Intrinsic_triangulation
+    // integrals over the whole triangle about its centroid g: used when no bisector cuts it
+    Eigen::Vector2d g = Eigen::Vector2d::Zero();
+    double mass = 0, central = 0;   // int rho, int rho |y - g|^2
+    Eigen::Vector2d first = Eigen::Vector2d::Zero();  // int rho (y - g)
+    double r0 = 0, area = 0;
+    Eigen::Vector2d rg = Eigen::Vector2d::Zero();
+  };
+
+  // background faces sorted along a Morton curve of their domain centroids: nearby faces are processed
+  // together, which keeps the nearest-site walks short and the memory accesses local
+  static std::vector<std::size_t> morton_order(const Intrinsic_triangulation& itri, const Planar_embedding& emb)
+  {
+    const std::size_t nf = itri.number_of_faces();
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for(const auto& p : emb.uv) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+    const Eigen::Vector2d ext = (hi - lo).cwiseMax(1e-300);
+    std::vector<std::pair<std::uint64_t, std::size_t>> key(nf);
+    for(std::size_t f = 0; f < nf; ++f) {
+      const auto& c = itri.face_vertices(f);
+      const Eigen::Vector2d g = (emb.uv[c[0]] + emb.uv[c[1]] + emb.uv[c[2]]) / 3.0;
+      const std::uint64_t x = std::uint64_t(std::min(1.0, std::max(0.0, (g.x() - lo.x()) / ext.x())) * 65535.0);
+      const std::uint64_t y = std::uint64_t(std::min(1.0, std::max(0.0, (g.y() - lo.y()) / ext.y())) * 65535.0);
+      std::uint64_t code = 0;
+      for(int b = 0; b < 16; ++b) code |= ((x >> b) & 1u) << (2 * b) | ((y >> b) & 1u) << (2 * b + 1);
+      key[f] = {code, f};
+    }
+    std::sort(key.begin(), key.end());
+    std::vector<std::size_t> order(nf);
+    for(std::size_t i = 0; i < nf; ++i) order[i] = key[i].second;
+    return order;
+  }
+
+  template <typename Work>
+  void run_chunks(std::size_t chunks, Work& work) const
+  {
+    const unsigned nt = std::min<unsigned>(m_threads, unsigned(chunks));
+    if(nt <= 1) {
+      for(std::size_t c = 0; c < chunks; ++c) work(c);
+      return;
+    }
+    std::vector<std::thread> pool;
+    for(unsigned t = 0; t < nt; ++t)
+      pool.emplace_back([&, t]() {
+        for(std::size_t c = t; c < chunks; c += nt) work(c);
+      });
+    for(auto& th : pool) th.join();
+  }
+
+  Eigen::Vector3d barycentric(int f, const Point& p) const
+  {
+    const Background_triangle& T = m_tri[f];
+    const Eigen::Vector2d e1 = T.p[1] - T.p[0], e2 = T.p[2] - T.p[0], w = p - T.p[0];
+    const double det = e1.x() * e2.y() - e1.y() * e2.x();
+    const double b1 = (w.x() * e2.y() - w.y() * e2.x()) / det, b2 = (e1.x() * w.y() - e1.y() * w.x()) / det;
+    return Eigen::Vector3d(1 - b1 - b2, b1, b2);
+  }
+
+  int cell_x(double x) const
+  {
+    const int i = int(std::floor((x - m_lo.x()) / m_cell));
+    return (i < 0 || i >= m_nx) ? -1 : i;
+  }
+  int cell_y(double y) const
+  {
+    const int j = int(std::floor((y - m_lo.y()) / m_cell));
+    return (j < 0 || j >= m_ny) ? -1 : j;
+  }
+
+  void build_grid()
+  {
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for(const auto& T : m_tri)
+      for(const auto& p : T.p) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    const Eigen::Vector2d ext = hi - lo;
+    const double pad = 1e-9 * std::max(ext.x(), ext.y());
+    m_lo = lo - Eigen::Vector2d(pad, pad);
+    const Eigen::Vector2d size = ext + Eigen::Vector2d(2 * pad, 2 * pad);
+    m_cell = std::sqrt(size.x() * size.y() / std::max<double>(1.0, double(m_tri.size()) / 2));
+    m_nx = std::max(1, int(std::ceil(size.x() / m_cell)));
+    m_ny = std::max(1, int(std::ceil(size.y() / m_cell)));
+    m_grid.assign(std::size_t(m_nx) * m_ny, {});
+    for(std::size_t f = 0; f < m_tri.size(); ++f) {
+      Eigen::Vector2d a = m_tri[f].p[0].cwiseMin(m_tri[f].p[1]).cwiseMin(m_tri[f].p[2]);
+      Eigen::Vector2d b = m_tri[f].p[0].cwiseMax(m_tri[f].p[1]).cwiseMax(m_tri[f].p[2]);
+      const double eps = 1e-9 * m_cell;
+      const int x0 = std::max(0, int(std::floor((a.x() - eps - m_lo.x()) / m_cell)));
+      const int x1 = std::min(m_nx - 1, int(std::floor((b.x() + eps - m_lo.x()) / m_cell)));
+      const int y0 = std::max(0, int(std::floor((a.y() - eps - m_lo.y()) / m_cell)));
+      const int y1 = std::min(m_ny - 1, int(std::floor((b.y() + eps - m_lo.y()) / m_cell)));
+      for(int y = y0; y <= y1; ++y)
+        for(int x = x0; x <= x1; ++x) m_grid[std::size_t(y) * m_nx + x].push_back(int(f));
+    }
+  }
+
+  void build_boundary()
+  {
+    m_uv_of_vertex.assign(m_itri.number_of_vertices(), Point::Zero());
+    for(const Background_triangle& T : m_tri)
+      for(int k = 0; k < 3; ++k) m_uv_of_vertex[m_itri.face_vertices(std::size_t(T.face))[k]] = T.p[k];
+    int h0 = -1;
+    for(int h = 0; h < int(m_itri.number_of_halfedges()); ++h)
+      if(m_itri.twin(h) < 0) { h0 = h; break; }
+    if(h0 < 0) throw Invalid_input("Planar_domain_traits: the background has no boundary");
+    // start at a corner if there is one, so corners split the loop into segments
+    int h = h0;
+    do {
+      if(m_itri.is_corner(m_itri.tail(h))) { h0 = h; break; }
+      h = m_itri.outgoing_halfedges(m_itri.head(h)).front();
+    } while(h != h0);
+    h = h0;
+    m_boundary.clear();
+    m_boundary_halfedges.clear();
+    m_perimeter = 0;
+    double metric_perimeter = 0;
+    do {
+      m_boundary.push_back(m_itri.tail(h));
+      m_boundary_halfedges.push_back(h);
+      m_perimeter += (m_uv_of_vertex[m_itri.head(h)] - m_uv_of_vertex[m_itri.tail(h)]).norm();
+      metric_perimeter += m_itri.length(h);
+      h = m_itri.outgoing_halfedges(m_itri.head(h)).front();
+    } while(h != h0 && m_boundary.size() <= m_itri.number_of_halfedges());
+    // u = 0 on the boundary makes both equal; the ratio converts metric areas to domain units
+    m_perimeter_metric_ratio = metric_perimeter > 0 ? std::pow(m_perimeter / metric_perimeter, 2) : 1.0;
+  }
+
+  Point boundary_point(const Boundary_location& b) const
+  {
+    return (1 - b.t) * m_uv_of_vertex[m_itri.tail(b.halfedge)] + b.t * m_uv_of_vertex[m_itri.head(b.halfedge)];
+  }
+
+  // corners, then evenly spaced points in between, in boundary order
+  void place_boundary_sites(double h, std::size_t n)
+  {
+    m_boundary_sites.clear();
+    const std::size_t nb = m_boundary.size();
+    std::vector<std::size_t> corner_pos;
+    for(std::size_t i = 0; i < nb; ++i)
+      if(m_itri.is_corner(m_boundary[i])) corner_pos.push_back(i);
+    const bool no_corner = corner_pos.empty();
+    if(no_corner) corner_pos.push_back(0);
+    std::vector<std::size_t> counts;  // sites strictly inside each segment
+    std::vector<double> seg_len;
+    std::size_t total = no_corner ? 0 : corner_pos.size();
+    for(std::size_t s = 0; s < corner_pos.size(); ++s) {
+      const std::size_t i0 = corner_pos[s], i1 = (s + 1 < corner_pos.size()) ? corner_pos[s + 1] : corner_pos[0] + nb;
+      double len = 0;
+      for(std::size_t i = i0; i < i1; ++i) len += edge_length(i % nb);
+      seg_len.push_back(len);
+      std::size_t m = std::size_t(std::max(0.0, std::round(len / h) - (no_corner ? 0 : 1)));
+      if(no_corner) m = std::max<std::size_t>(m, 3);
+      counts.push_back(m);
+      total += m;
+    }
+    // never more boundary sites than the budget allows (keep a few interior ones when possible)
+    while(total > n) {
+      std::size_t s = std::size_t(std::max_element(counts.begin(), counts.end()) - counts.begin());
+      if(counts[s] == 0) break;
+      --counts[s];
+      --total;
+    }
+    for(std::size_t s = 0; s < corner_pos.size(); ++s) {
+      const std::size_t i0 = corner_pos[s];
+      if(!no_corner) m_boundary_sites.push_back({m_boundary_halfedges[i0], 0.0});
+      const std::size_t m = counts[s];
+      const double step = seg_len[s] / double(no_corner ? m : m + 1);
+      // walk the segment, dropping a site every `step` of arclength
+      std::size_t i = i0;
+      double walked = 0, next = no_corner ? 0.5 * step : step;
+      for(std::size_t k = 0; k < m; ++k, next += step) {
+        while(walked + edge_length(i % nb) < next) walked += edge_length(i++ % nb);
+        const double t = std::min(1.0, std::max(0.0, (next - walked) / edge_length(i % nb)));
+        m_boundary_sites.push_back({m_boundary_halfedges[i % nb], t});
+      }
+    }
+  }
+
+  double edge_length(std::size_t i) const
+  {
+    const int h = m_boundary_halfedges[i];
+    return (m_uv_of_vertex[m_itri.head(h)] - m_uv_of_vertex[m_itri.tail(h)]).norm();
+  }
+
+  const Intrinsic_triangulation& m_itri;
+  std::vector<Background_triangle> m_tri;
+  std::vector<Point> m_uv_of_vertex;
+  std::vector<int> m_boundary, m_boundary_halfedges;
+  std::vector<Boundary_location> m_boundary_sites;
+  std::size_t m_sites_fixed = 0;
+  double m_total_mass = 0, m_area = 0, m_perimeter = 0, m_perimeter_metric_ratio = 1;
+  Eigen::Vector2d m_lo = Eigen::Vector2d::Zero();
+  double m_cell = 1;
+  int m_nx = 1, m_ny = 1;
+  std::vector<std::vector<int>> m_grid;
+  unsigned m_threads = 1;
+};
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_PLANAR_DOMAIN_TRAITS_H

@@ -1,0 +1,53 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_REMESHING_RESULT_H
+#define ANISO_CONFORMAL_REMESHING_RESULT_H
+
+#include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+/// \file Remeshing_result.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalMain
+ * the diagnostics of a `remesh()` call: per-stage wall times and counts, solver figures, quality.
+ * Failures are exceptions, not fields of this struct.
+ */
+struct Remeshing_result {
+  std::array<double, number_of_stages> seconds{};  ///< wall time of each stage, indexed by `Stage`
+  std::string domain;                              ///< the parametric domain used ("plane")
+  std::size_t input_vertices = 0;                  ///< vertices of the input
+  std::size_t input_faces = 0;                     ///< faces of the input
+  std::size_t background_vertices = 0;             ///< vertices of the background after adjustment
+  std::size_t background_faces = 0;                ///< faces of the background after adjustment
+  std::size_t corners = 0;                         ///< input corners kept as output vertices
+  Edge_adjustment_report adjustment;               ///< flips and splits of stage 2
+  std::size_t conformal_iterations = 0;            ///< Newton iterations of stage 3
+  double conformal_residual = 0;                   ///< max angle-sum error at the end of stage 3 (radians)
+  double conformal_factor_min = 0;                 ///< smallest conformal factor
+  double conformal_factor_max = 0;                 ///< largest conformal factor
+  Cvt_report cvt;                                  ///< energies and iterations of stage 4
+  std::size_t boundary_sites = 0;                  ///< output vertices on the boundary
+  std::size_t inverted_triangles = 0;              ///< output triangles whose orientation disagrees with the input
+  Quality_report quality;                          ///< quality of the output in the metric
+  /// total wall time
+  double total_seconds() const
+  {
+    double s = 0;
+    for(double x : seconds) s += x;
+    return s;
+  }
+};
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_REMESHING_RESULT_H

@@ -1,0 +1,13 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// X-macro list of the named parameters owned by Aniso_conformal (no include guard on purpose:
+// parameters.h includes it several times with different definitions of the macro).
+
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(number_of_vertices_t, number_of_vertices, number_of_vertices)
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(cvt_method_t, cvt_method, cvt_method)
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(corner_angle_t, corner_angle, corner_angle)
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(conformal_tolerance_t, conformal_tolerance, conformal_tolerance)
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(max_conformal_iterations_t, max_conformal_iterations, max_conformal_iterations)
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(max_adjustment_rounds_t, max_adjustment_rounds, max_adjustment_rounds)
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(number_of_threads_t, number_of_threads, number_of_threads)

@@ -1,0 +1,121 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_MESH_QUALITY_H
+#define ANISO_CONFORMAL_MESH_QUALITY_H
+
+#include <Aniso_conformal/Exceptions.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+/// \file mesh_quality.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalQuality
+ * the quality of a triangle mesh measured in a metric (paper 3.6, Frey and Borouchaki): each triangle
+ * is transformed by `Q_T`, the mean of the metric square roots at its corners, then measured.
+ */
+struct Quality_report {
+  std::size_t number_of_vertices = 0;   ///< vertices of the mesh
+  std::size_t number_of_triangles = 0;  ///< triangles of the mesh
+  double G_min = 0;                     ///< smallest `G = 2 sqrt(3) S / (p h)` (1 for equilateral)
+  double G_avg = 0;                     ///< mean `G`
+  double theta_min = 0;                 ///< smallest angle anywhere, degrees
+  double theta_avg = 0;                 ///< mean over triangles of their smallest angle, degrees
+  double percent_below_30 = 0;          ///< percentage of triangles whose smallest angle is below 30 degrees
+  double theta_max = 0;                 ///< largest angle anywhere, degrees
+  double bin_width = 5;                 ///< width of the histogram bins, degrees
+  std::vector<double> angle_histogram;  ///< counts of all angles in bins of `bin_width` over [0, 180)
+  /// metric conformity: edge lengths in the metric (edge `Q` = mean of its ends), divided by their mean
+  double edge_length_mean = 0;          ///< mean metric edge length (before normalisation)
+  double edge_length_stddev = 0;        ///< standard deviation of the normalised lengths
+  double edge_length_min = 0;           ///< smallest normalised length
+  double edge_length_max = 0;           ///< largest normalised length
+};
+
+/*!
+ * \ingroup PkgAnisoConformalQuality
+ * measures the quality of the mesh (`points`, `faces`) in the metric whose square roots at the
+ * vertices are `Q` (DESIGN.md 3 "Quality").
+ * \throws Invalid_input if the sizes disagree or the mesh is empty
+ */
+inline Quality_report compute_mesh_quality(const std::vector<Eigen::Vector3d>& points,
+                                           const std::vector<std::array<std::size_t, 3>>& faces,
+                                           const std::vector<Eigen::Matrix3d>& Q)
+{
+  if(points.size() != Q.size()) throw Invalid_input("compute_mesh_quality(): one metric per vertex is needed");
+  if(faces.empty()) throw Invalid_input("compute_mesh_quality(): the mesh has no triangle");
+  const double rad = 180.0 / 3.14159265358979323846;
+  Quality_report r;
+  r.number_of_vertices = points.size();
+  r.number_of_triangles = faces.size();
+  r.angle_histogram.assign(36, 0.0);
+  r.G_min = 1e300;
+  r.theta_min = 1e300;
+  std::size_t below = 0;
+  for(const auto& f : faces) {
+    for(std::size_t k = 0; k < 3; ++k)
+      if(f[k] >= points.size()) throw Invalid_input("compute_mesh_quality(): face index out of range");
+    const Eigen::Matrix3d QT = (Q[f[0]] + Q[f[1]] + Q[f[2]]) / 3.0;
+    std::array<Eigen::Vector3d, 3> p = {{QT * points[f[0]], QT * points[f[1]], QT * points[f[2]]}};
+    std::array<double, 3> l;
+    for(int k = 0; k < 3; ++k) l[k] = (p[(k + 1) % 3] - p[k]).norm();
+    const double S = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    const double half_perimeter = 0.5 * (l[0] + l[1] + l[2]);
+    const double h = std::max({l[0], l[1], l[2]});
+    const double G = (half_perimeter > 0 && h > 0) ? 2 * std::sqrt(3.0) * S / (half_perimeter * h) : 0.0;
+    r.G_min = std::min(r.G_min, G);
+    r.G_avg += G;
+    double smallest = 1e300;
+    for(int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+      const double a = std::atan2(u.cross(v).norm(), u.dot(v)) * rad;
+      smallest = std::min(smallest, a);
+      r.theta_max = std::max(r.theta_max, a);
+      r.angle_histogram[std::min<std::size_t>(35, std::size_t(std::max(0.0, a) / r.bin_width))] += 1;
+    }
+    r.theta_min = std::min(r.theta_min, smallest);
+    r.theta_avg += smallest;
+    if(smallest < 30) ++below;
+  }
+  r.G_avg /= double(faces.size());
+  r.theta_avg /= double(faces.size());
+  r.percent_below_30 = 100.0 * double(below) / double(faces.size());
+
+  std::map<std::pair<std::size_t, std::size_t>, double> edges;
+  for(const auto& f : faces)
+    for(int k = 0; k < 3; ++k) {
+      const std::size_t a = f[k], b = f[(k + 1) % 3];
+      const auto key = std::minmax(a, b);
+      if(edges.count(key)) continue;
+      edges[key] = (0.5 * (Q[a] + Q[b]) * (points[b] - points[a])).norm();
+    }
+  double sum = 0;
+  for(const auto& e : edges) sum += e.second;
+  r.edge_length_mean = sum / double(edges.size());
+  double var = 0;
+  r.edge_length_min = 1e300;
+  r.edge_length_max = 0;
+  for(const auto& e : edges) {
+    const double x = e.second / r.edge_length_mean;
+    var += (x - 1) * (x - 1);
+    r.edge_length_min = std::min(r.edge_length_min, x);
+    r.edge_length_max = std::max(r.edge_length_max, x);
+  }
+  r.edge_length_stddev = std::sqrt(var / double(edges.size()));
+  return r;
+}
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_MESH_QUALITY_H

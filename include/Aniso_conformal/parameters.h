@@ -1,0 +1,104 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_PARAMETERS_H
+#define ANISO_CONFORMAL_PARAMETERS_H
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+/// \file parameters.h
+/// Named parameters in CGAL's style: `Aniso_conformal::parameters::number_of_vertices(1000).number_of_iterations(100)`.
+
+namespace Aniso_conformal {
+
+/// tags of the named parameters owned by this library
+namespace internal_np {
+#define ANISO_CONFORMAL_ADD_NAMED_PARAMETER(X, Y, Z) enum X { Y };
+#include <Aniso_conformal/internal/parameters_interface.h>
+#undef ANISO_CONFORMAL_ADD_NAMED_PARAMETER
+} // namespace internal_np
+
+/*!
+ * \ingroup PkgAnisoConformalParameters
+ * the CVT optimiser (stage 4)
+ */
+enum class Cvt_method {
+  LLOYD,  ///< Lloyd's fixed-point iteration (the paper's method; the reference)
+  LBFGS   ///< L-BFGS on the CVT energy (Liu et al. 2009; converges in far fewer iterations)
+};
+
+/*!
+ * \ingroup PkgAnisoConformalParameters
+ * a sequence of named parameters. It is a `CGAL::Named_function_parameters`, so it can be passed to
+ * CGAL functions, and it adds chaining members for this library's own parameters and for the CGAL
+ * parameters this library documents (CGAL 5.5 has no `combine()`, so a pack built from a CGAL
+ * parameter first cannot be extended with ours: start the chain with one of ours).
+ */
+template <typename T, typename Tag, typename Base = CGAL::internal_np::No_property>
+struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base> {
+#ifndef DOXYGEN_RUNNING
+  typedef CGAL::Named_function_parameters<T, Tag, Base> Cgal_pack;
+  typedef Named_parameters<T, Tag, Base> self;
+  explicit Named_parameters(const T& v) : Cgal_pack(v) {}
+  Named_parameters(const T& v, const Base& b) : Cgal_pack(v, b) {}
+
+#define ANISO_CONFORMAL_ADD_NAMED_PARAMETER(X, Y, Z)                          \
+  template <typename K>                                                       \
+  Named_parameters<K, ::Aniso_conformal::internal_np::X, self> Z(const K& k) const \
+  {                                                                           \
+    return Named_parameters<K, ::Aniso_conformal::internal_np::X, self>(k, *this); \
+  }
+#include <Aniso_conformal/internal/parameters_interface.h>
+#undef ANISO_CONFORMAL_ADD_NAMED_PARAMETER
+
+#define ANISO_CONFORMAL_ADD_CGAL_PARAMETER(X, Z)                              \
+  template <typename K>                                                       \
+  Named_parameters<K, CGAL::internal_np::X, self> Z(const K& k) const         \
+  {                                                                           \
+    return Named_parameters<K, CGAL::internal_np::X, self>(k, *this);         \
+  }
+  ANISO_CONFORMAL_ADD_CGAL_PARAMETER(number_of_iterations_t, number_of_iterations)
+  ANISO_CONFORMAL_ADD_CGAL_PARAMETER(random_seed_t, random_seed)
+  ANISO_CONFORMAL_ADD_CGAL_PARAMETER(visitor_t, visitor)
+  ANISO_CONFORMAL_ADD_CGAL_PARAMETER(verbose_t, verbose)
+  ANISO_CONFORMAL_ADD_CGAL_PARAMETER(vertex_point_t, vertex_point_map)
+  ANISO_CONFORMAL_ADD_CGAL_PARAMETER(vertex_index_t, vertex_index_map)
+#endif
+};
+
+/// named-parameter functions; see the manual page for the list with their defaults
+namespace parameters {
+
+using CGAL::parameters::Default_named_parameters;
+using CGAL::parameters::default_values;
+
+#ifndef DOXYGEN_RUNNING
+#define ANISO_CONFORMAL_ADD_NAMED_PARAMETER(X, Y, Z)                          \
+  template <typename K>                                                       \
+  Named_parameters<K, ::Aniso_conformal::internal_np::X> Z(const K& k)        \
+  {                                                                           \
+    return Named_parameters<K, ::Aniso_conformal::internal_np::X>(k);         \
+  }
+#include <Aniso_conformal/internal/parameters_interface.h>
+#undef ANISO_CONFORMAL_ADD_NAMED_PARAMETER
+
+#define ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER(X, Z)                         \
+  template <typename K>                                                       \
+  Named_parameters<K, CGAL::internal_np::X> Z(const K& k)                     \
+  {                                                                           \
+    return Named_parameters<K, CGAL::internal_np::X>(k);                      \
+  }
+ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER(number_of_iterations_t, number_of_iterations)
+ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER(random_seed_t, random_seed)
+ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER(visitor_t, visitor)
+ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER(verbose_t, verbose)
+ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER(vertex_point_t, vertex_point_map)
+ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER(vertex_index_t, vertex_index_map)
+#undef ANISO_CONFORMAL_ADD_CGAL_FREE_PARAMETER
+#endif
+
+} // namespace parameters
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_PARAMETERS_H

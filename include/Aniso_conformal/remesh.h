@@ -1,0 +1,235 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_REMESH_H
+#define ANISO_CONFORMAL_REMESH_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/Planar_domain_traits.h>
+#include <Aniso_conformal/Remeshing_result.h>
+#include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/conformal_embedding.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/visitor_helper.h>
+#include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/parameters.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+/// \file remesh.h
+
+namespace Aniso_conformal {
+
+namespace internal {
+
+// Marks as corners the input boundary vertices whose boundary turns by more than `angle_deg`.
+inline std::size_t mark_corners(const Input_surface& s, Intrinsic_triangulation& itri, double angle_deg)
+{
+  const double limit = angle_deg * 3.14159265358979323846 / 180.0;
+  std::size_t n = 0;
+  for(const auto& loop : s.boundary_loops())
+    for(std::size_t i = 0; i < loop.size(); ++i) {
+      const Eigen::Vector3d& p = s.points()[loop[(i + loop.size() - 1) % loop.size()]];
+      const Eigen::Vector3d& v = s.points()[loop[i]];
+      const Eigen::Vector3d& q = s.points()[loop[(i + 1) % loop.size()]];
+      const Eigen::Vector3d a = v - p, b = q - v;
+      const double turn = std::atan2(a.cross(b).norm(), a.dot(b));
+      if(turn > limit) {
+        itri.set_corner(int(loop[i]), true);
+        ++n;
+      }
+    }
+  return n;
+}
+
+class Stage_timer {
+public:
+  template <typename Visitor>
+  Stage_timer(Visitor& vis, Stage s) : m_stage(s), m_start(std::chrono::steady_clock::now()) { vis.on_stage_started(s); }
+  template <typename Visitor>
+  double stop(Visitor& vis)
+  {
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    vis.on_stage_finished(m_stage, t);
+    return t;
+  }
+
+private:
+  Stage m_stage;
+  std::chrono::steady_clock::time_point m_start;
+};
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgAnisoConformalMain
+ * remeshes `surface` into a triangle mesh with exactly `number_of_vertices` vertices whose triangles are
+ * as close to equilateral as possible when measured in `metric`, by the method of Zhong et al. 2014:
+ * metric edge lengths (with metric-Delaunay flips and longest-edge splits), conformal embedding into
+ * the plane, weighted CVT with density `cf^2`, Delaunay dual mapped back onto the input.
+ *
+ * This version supports surfaces of disk topology (a 2D domain, an image, an open curved patch): the
+ * output keeps the boundary (boundary vertices on the input boundary, corners turning by more than
+ * `corner_angle` degrees kept as vertices) and is a single disk.
+ *
+ * \tparam AnisotropicMetric a model of `AnisotropicMetric`
+ * \param surface the input (never modified)
+ * \param metric the metric
+ * \param result receives the diagnostics
+ * \param np named parameters:
+ *   - `number_of_vertices` (required): the number of output vertices;
+ *   - `number_of_iterations` (default 100): CVT iterations;
+ *   - `cvt_method` (default `Cvt_method::LBFGS`);
+ *   - `random_seed` (default 0): seed of the initial sites; the same seed gives the same output bit for bit;
+ *   - `corner_angle` (default 30): boundary turning angle, in degrees, above which a vertex is a corner;
+ *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
+ *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
+ *   - `number_of_threads` (default 0 = all cores) for the CVT integration;
+ *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).
+ * \returns the output mesh as arrays
+ * \throws Invalid_input if the topology is not a disk, the metric is unusable (non-finite, not symmetric,
+ *         not positive definite on the tangent plane), `number_of_vertices` is missing, below the minimum
+ *         (3, and at least the number of corners), or above the number of background vertices
+ * \throws Convergence_failure if an iterative stage does not converge within its bound
+ * \throws Cancelled if the visitor asked to stop
+ */
+template <typename AnisotropicMetric, typename NamedParameters = parameters::Default_named_parameters>
+Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                        const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  const std::size_t n = choose_parameter(get_parameter(np, internal_np::number_of_vertices), std::size_t(0));
+  const unsigned seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
+  const double corner_angle = choose_parameter(get_parameter(np, internal_np::corner_angle), 30.0);
+  const unsigned threads = choose_parameter(get_parameter(np, internal_np::number_of_threads), 0u);
+  typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
+
+  if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
+  if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
+  if(!surface.is_disk())
+    throw Invalid_input("remesh(): the input is " + surface.topology_description() +
+                        "; this version remeshes topological disks (the planar domain) only");
+  result = Remeshing_result();
+  result.domain = "plane";
+  result.input_vertices = surface.number_of_vertices();
+  result.input_faces = surface.number_of_faces();
+
+  // 1. metric
+  internal::Stage_timer t1(vis, Stage::METRIC);
+  Intrinsic_triangulation itri(surface, compute_metric_square_roots(surface, metric));
+  result.corners = internal::mark_corners(surface, itri, corner_angle);
+  result.seconds[int(Stage::METRIC)] = t1.stop(vis);
+
+  // 2. edge lengths
+  internal::Stage_timer t2(vis, Stage::EDGE_LENGTHS);
+  result.adjustment = adjust_edge_lengths(itri, surface, np);
+  result.background_vertices = itri.number_of_vertices();
+  result.background_faces = itri.number_of_faces();
+  result.seconds[int(Stage::EDGE_LENGTHS)] = t2.stop(vis);
+  if(n > itri.number_of_vertices())
+    throw Invalid_input("remesh(): " + std::to_string(n) + " output vertices exceed what the background triangulation can carry (" +
+                        std::to_string(itri.number_of_vertices()) + " vertices); refine the input");
+
+  // 3. conformal embedding
+  internal::Stage_timer t3(vis, Stage::EMBEDDING);
+  Planar_embedding emb = conformal_embedding(itri, np);
+  result.conformal_iterations = emb.iterations;
+  result.conformal_residual = emb.residual;
+  result.conformal_factor_min = *std::min_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+  result.conformal_factor_max = *std::max_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+  result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
+
+  // 4. weighted CVT
+  internal::Stage_timer t4(vis, Stage::CVT);
+  Planar_domain_traits domain(itri, emb, threads);
+  double adjusted_area = 0;
+  for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
+    adjusted_area += internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
+  std::vector<Planar_domain_traits::Point> sites = domain.initial_sites(n, seed, adjusted_area);
+  result.boundary_sites = domain.number_of_fixed_sites();
+  result.cvt = weighted_centroidal_Voronoi_tessellation(domain, sites, domain.number_of_fixed_sites(), np);
+  result.seconds[int(Stage::CVT)] = t4.stop(vis);
+
+  // 5. dual mesh
+  internal::Stage_timer t5(vis, Stage::DUAL_MESH);
+  Remeshed_surface out = extract_dual_mesh(surface, itri, domain, sites);
+  result.seconds[int(Stage::DUAL_MESH)] = t5.stop(vis);
+
+  // 6. quality, in the metric, and orientation against the input
+  internal::Stage_timer t6(vis, Stage::QUALITY);
+  std::vector<Eigen::Matrix3d> Q(out.points.size());
+  for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = internal::symmetric_sqrt(metric.tensor(out.surface_points[i]));
+  result.quality = compute_mesh_quality(out.points, out.faces, Q);
+  for(const auto& f : out.faces) {
+    const Eigen::Vector3d nf = (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]);
+    Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+    for(int k = 0; k < 3; ++k) {
+      const Surface_point& sp = out.surface_points[f[k]];
+      for(int j = 0; j < 3; ++j) ref += sp.barycentric[j] * surface.vertex_normals()[sp.vertices[j]];
+    }
+    if(surface.is_planar()) ref = Eigen::Vector3d(0, 0, 1);
+    if(!(nf.dot(ref) > 0)) ++result.inverted_triangles;
+  }
+  result.seconds[int(Stage::QUALITY)] = t6.stop(vis);
+  return out;
+}
+
+/*!
+ * \ingroup PkgAnisoConformalMain
+ * remeshes the triangle mesh `tmesh` (any model of `FaceListGraph`: `CGAL::Surface_mesh`,
+ * `CGAL::Polyhedron_3`, ...) into `out_mesh` (a model of `MutableFaceGraph`), as the overload on
+ * `Input_surface` does; `out_mesh` is cleared and written only on success (strong guarantee), and
+ * `tmesh` is never modified.
+ *
+ * \tparam TriangleMesh a model of `FaceListGraph` with a vertex point map
+ * \tparam AnisotropicMetric a model of `AnisotropicMetric` indexed by the vertex index map of `np`
+ * \tparam OutputMesh a model of `MutableFaceGraph` with an internal vertex point map
+ * \param np as for the other overload, plus `vertex_point_map` and `vertex_index_map` of `tmesh`
+ */
+template <typename TriangleMesh, typename AnisotropicMetric, typename OutputMesh,
+          typename NamedParameters = parameters::Default_named_parameters>
+Remeshing_result remesh(const TriangleMesh& tmesh, const AnisotropicMetric& metric, OutputMesh& out_mesh,
+                        const NamedParameters& np = parameters::default_values())
+{
+  const Input_surface surface = Input_surface::from_mesh(tmesh, np);
+  Remeshing_result result;
+  const Remeshed_surface out = remesh(surface, metric, result, np);
+  typedef typename boost::graph_traits<OutputMesh>::vertex_descriptor vertex_descriptor;
+  // build aside, then assign: out_mesh changes only on success
+  OutputMesh built;
+  auto vpm = get(CGAL::vertex_point, built);
+  typedef typename boost::property_traits<decltype(vpm)>::value_type Point;
+  std::vector<vertex_descriptor> vd(out.points.size());
+  for(std::size_t i = 0; i < vd.size(); ++i) {
+    vd[i] = add_vertex(built);
+    put(vpm, vd[i], Point(out.points[i].x(), out.points[i].y(), out.points[i].z()));
+  }
+  for(const auto& f : out.faces) {
+    std::array<vertex_descriptor, 3> t = {{vd[f[0]], vd[f[1]], vd[f[2]]}};
+    if(CGAL::Euler::add_face(t, built) == boost::graph_traits<OutputMesh>::null_face())
+      throw Convergence_failure("remesh(): the output is not a valid 2-manifold (add_face refused a triangle)", 0);
+  }
+  out_mesh = built;
+  return result;
+}
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_REMESH_H
