@@ -31,6 +31,15 @@
 
 namespace Aniso_conformal {
 
+namespace internal {
+// BGL's faces(g) through ADL, out of reach of Input_surface::faces()
+template <typename Graph>
+auto bgl_faces(const Graph& g) -> decltype(faces(g))
+{
+  return faces(g);
+}
+} // namespace internal
+
 /*!
  * \ingroup PkgAnisoConformalMain
  * an indexed, validated, read-only copy of the input triangle mesh: positions, faces, topology
@@ -82,7 +91,7 @@ public:
     std::vector<Face> fs;
     fs.reserve(num_faces(tm));
     std::size_t fi = 0;
-    for(auto f : faces(tm)) {
+    for(auto f : internal::bgl_faces(tm)) {
       Face t;
       std::size_t k = 0;
       for(auto v : CGAL::vertices_around_face(halfedge(f, tm), tm)) {

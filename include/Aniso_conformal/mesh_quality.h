@@ -36,6 +36,7 @@ struct Quality_report {
   double theta_max = 0;                 ///< largest angle anywhere, degrees
   double bin_width = 5;                 ///< width of the histogram bins, degrees
   std::vector<double> angle_histogram;  ///< counts of all angles in bins of `bin_width` over [0, 180)
+  std::vector<double> triangle_G;       ///< `G` of each triangle, in the order of the faces
   /// metric conformity: edge lengths in the metric (edge `Q` = mean of its ends), divided by their mean
   double edge_length_mean = 0;          ///< mean metric edge length (before normalisation)
   double edge_length_stddev = 0;        ///< standard deviation of the normalised lengths
@@ -60,6 +61,7 @@ inline Quality_report compute_mesh_quality(const std::vector<Eigen::Vector3d>& p
   r.number_of_vertices = points.size();
   r.number_of_triangles = faces.size();
   r.angle_histogram.assign(36, 0.0);
+  r.triangle_G.reserve(faces.size());
   r.G_min = 1e300;
   r.theta_min = 1e300;
   std::size_t below = 0;
@@ -75,6 +77,7 @@ inline Quality_report compute_mesh_quality(const std::vector<Eigen::Vector3d>& p
     const double h = std::max({l[0], l[1], l[2]});
     const double G = (half_perimeter > 0 && h > 0) ? 2 * std::sqrt(3.0) * S / (half_perimeter * h) : 0.0;
     r.G_min = std::min(r.G_min, G);
+    r.triangle_G.push_back(G);
     r.G_avg += G;
     double smallest = 1e300;
     for(int k = 0; k < 3; ++k) {

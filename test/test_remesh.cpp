@@ -1,0 +1,275 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Integration tests of remesh(): the paper's planar figures against the quality bar, the BGL entry point
+// on Surface_mesh and Polyhedron_3, determinism, disk surfaces, and every error path of the entry point.
+
+#define BOOST_TEST_MODULE Aniso_conformal_remesh
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Analytic_metric_2.h>
+#include <Aniso_conformal/Paper_metrics.h>
+#include <Aniso_conformal/Tensor_field_metric.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/make_square_background.h>
+#include <Aniso_conformal/remesh.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace AC = Aniso_conformal;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+
+namespace {
+
+struct Planar_checks {
+  double area = 0;
+  std::size_t corners_found = 0;
+  std::size_t boundary_edges = 0;
+  int euler = 0;
+};
+
+// Area, corners, boundary and Euler characteristic of a planar output.
+Planar_checks check_planar(const AC::Remeshed_surface& out)
+{
+  Planar_checks c;
+  for(const auto& f : out.faces) {
+    const Eigen::Vector3d a = out.points[f[0]], b = out.points[f[1]], d = out.points[f[2]];
+    c.area += 0.5 * ((b - a).cross(d - a)).z();
+  }
+  for(const auto& p : out.points)
+    for(const Eigen::Vector3d corner : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
+                                        Eigen::Vector3d(0, 1, 0)})
+      if((p - corner).norm() < 1e-12) ++c.corners_found;
+  std::set<std::pair<std::size_t, std::size_t>> directed, edges;
+  for(const auto& f : out.faces)
+    for(int k = 0; k < 3; ++k) {
+      directed.insert({f[k], f[(k + 1) % 3]});
+      edges.insert(std::minmax(f[k], f[(k + 1) % 3]));
+    }
+  for(const auto& d : directed)
+    if(!directed.count({d.second, d.first})) ++c.boundary_edges;
+  c.euler = int(out.points.size()) - int(edges.size()) + int(out.faces.size());
+  return c;
+}
+
+template <typename Metric>
+AC::Remeshed_surface remesh_square(const Metric& metric, std::size_t n, AC::Remeshing_result& r, unsigned seed = 0)
+{
+  const AC::Input_surface bg = AC::make_square_background(metric, n);
+  return AC::remesh(bg, metric, r, AC::parameters::number_of_vertices(n).random_seed(seed));
+}
+
+template <typename Mesh>
+void fill_mesh(const AC::Input_surface& s, Mesh& m)
+{
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vd;
+  std::vector<vd> v;
+  for(const auto& p : s.points()) {
+    v.push_back(add_vertex(m));
+    put(get(CGAL::vertex_point, m), v.back(), K::Point_3(p.x(), p.y(), p.z()));
+  }
+  for(const auto& f : s.faces()) {
+    std::array<vd, 3> t = {{v[f[0]], v[f[1]], v[f[2]]}};
+    BOOST_REQUIRE(CGAL::Euler::add_face(t, m) != boost::graph_traits<Mesh>::null_face());
+  }
+}
+
+struct Cancel_after {
+  std::size_t calls = 0, limit = 3;
+  void on_stage_started(AC::Stage) {}
+  void on_stage_finished(AC::Stage, double) {}
+  bool on_iteration(AC::Stage, std::size_t, std::size_t, double) { return ++calls < limit; }
+};
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(fig6_meets_the_quality_bar)
+{
+  AC::Remeshing_result r;
+  const auto out = remesh_square(AC::make_analytic_metric_2(AC::Fig6_metric()), 1000, r);
+  const Planar_checks c = check_planar(out);
+  BOOST_TEST(out.points.size() == 1000u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(std::abs(c.area - 1.0) <= 1e-9);
+  BOOST_TEST(c.corners_found == 4u);
+  BOOST_TEST(c.euler == 1);
+  BOOST_TEST(c.boundary_edges == r.boundary_sites);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+  BOOST_TEST(r.quality.theta_min >= 10.0);
+  BOOST_TEST(r.quality.percent_below_30 <= 5.0);
+  BOOST_TEST_MESSAGE("Fig. 6: G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg << " theta_min "
+                                      << r.quality.theta_min << " %<30 " << r.quality.percent_below_30);
+}
+
+BOOST_AUTO_TEST_CASE(fig7_meets_the_quality_bar)
+{
+  AC::Remeshing_result r;
+  const auto out = remesh_square(AC::make_analytic_metric_2(AC::Circular_metric()), 4000, r);
+  const Planar_checks c = check_planar(out);
+  BOOST_TEST(out.points.size() == 4000u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(std::abs(c.area - 1.0) <= 1e-9);
+  BOOST_TEST(c.corners_found == 4u);
+  BOOST_TEST(c.euler == 1);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+  BOOST_TEST(r.quality.theta_min >= 10.0);
+  BOOST_TEST(r.quality.percent_below_30 <= 5.0);
+  BOOST_TEST_MESSAGE("Fig. 7: G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg << " theta_min "
+                                      << r.quality.theta_min << " %<30 " << r.quality.percent_below_30);
+}
+
+BOOST_AUTO_TEST_CASE(same_seed_same_output_bit_for_bit)
+{
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  AC::Remeshing_result r1, r2, r3;
+  const auto a = remesh_square(metric, 300, r1, 7), b = remesh_square(metric, 300, r2, 7), c = remesh_square(metric, 300, r3, 8);
+  BOOST_REQUIRE(a.points.size() == b.points.size());
+  bool same = a.faces == b.faces, differs = false;
+  for(std::size_t i = 0; i < a.points.size(); ++i) {
+    same = same && a.points[i] == b.points[i];
+    differs = differs || a.points[i] != c.points[i];
+  }
+  BOOST_TEST(same);
+  BOOST_TEST(differs);
+}
+
+typedef boost::mpl::list<CGAL::Surface_mesh<K::Point_3>, CGAL::Polyhedron_3<K>> Mesh_types;
+
+BOOST_AUTO_TEST_CASE_TEMPLATE(bgl_entry_point_on_mesh_types, Mesh, Mesh_types)
+{
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const AC::Input_surface bg = AC::make_square_background(metric, 300);
+  Mesh in, out;
+  fill_mesh(bg, in);
+  std::vector<K::Point_3> before;
+  for(auto v : vertices(in)) before.push_back(get(CGAL::vertex_point, in, v));
+  const AC::Remeshing_result r = AC::remesh(in, metric, out, AC::parameters::number_of_vertices(std::size_t(300)));
+  BOOST_TEST(num_vertices(out) == 300u);
+  BOOST_TEST(CGAL::is_valid_polygon_mesh(out));
+  BOOST_TEST(CGAL::is_triangle_mesh(out));
+  BOOST_TEST(int(num_vertices(out)) - int(num_edges(out)) + int(num_faces(out)) == 1);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+  std::size_t i = 0;  // the input is untouched
+  bool unchanged = num_vertices(in) == before.size();
+  for(auto v : vertices(in)) unchanged = unchanged && get(CGAL::vertex_point, in, v) == before[i++];
+  BOOST_TEST(unchanged);
+}
+
+BOOST_AUTO_TEST_CASE_TEMPLATE(cancelling_visitor_leaves_output_unchanged, Mesh, Mesh_types)
+{
+  const AC::Input_surface bg = AC::make_square_background(AC::Uniform_metric(), 100);
+  Mesh in, out;
+  fill_mesh(bg, in);
+  fill_mesh(bg, out);
+  const std::size_t nv = num_vertices(out);
+  Cancel_after cancel;
+  BOOST_CHECK_THROW(AC::remesh(in, AC::Uniform_metric(), out,
+                               AC::parameters::number_of_vertices(std::size_t(100)).visitor(std::ref(cancel))),
+                    AC::Cancelled);
+  BOOST_TEST(num_vertices(out) == nv);
+  BOOST_TEST(cancel.calls == cancel.limit);
+}
+
+BOOST_AUTO_TEST_CASE(disk_surface_keeps_boundary_and_corners)
+{
+  // a curved square patch z = 0.3 (x^2 - y^2) over [-1,1]^2: four corners, one boundary loop
+  const int g = 31;
+  std::vector<Eigen::Vector3d> pts;
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j < g; ++j)
+    for(int i = 0; i < g; ++i) {
+      const double x = -1 + 2.0 * i / (g - 1), y = -1 + 2.0 * j / (g - 1);
+      pts.emplace_back(x, y, 0.3 * (x * x - y * y));
+    }
+  for(int j = 0; j + 1 < g; ++j)
+    for(int i = 0; i + 1 < g; ++i) {
+      const std::size_t a = j * g + i, b = a + 1, c = a + g + 1, d = a + g;
+      faces.push_back({{a, b, c}});
+      faces.push_back({{a, c, d}});
+    }
+  const AC::Input_surface s(pts, faces);
+  AC::Remeshing_result r;
+  const auto out = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(200)));
+  BOOST_TEST(out.points.size() == 200u);
+  BOOST_TEST(r.corners == 4u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  std::size_t corners = 0;
+  for(const auto& p : out.points)
+    for(std::size_t v : {std::size_t(0), std::size_t(g - 1), std::size_t(g * g - 1), std::size_t(g * (g - 1))})
+      if((p - pts[v]).norm() < 1e-12) ++corners;
+  BOOST_TEST(corners == 4u);
+  // boundary vertices of the output lie on the input boundary (|x| = 1 or |y| = 1)
+  std::set<std::pair<std::size_t, std::size_t>> directed;
+  for(const auto& f : out.faces)
+    for(int k = 0; k < 3; ++k) directed.insert({f[k], f[(k + 1) % 3]});
+  std::set<std::size_t> boundary;
+  for(const auto& d : directed)
+    if(!directed.count({d.second, d.first})) boundary.insert(d.first);
+  BOOST_TEST(boundary.size() == r.boundary_sites);
+  for(std::size_t v : boundary) {
+    const Eigen::Vector3d& p = out.points[v];
+    BOOST_TEST((std::abs(std::abs(p.x()) - 1) < 1e-12 || std::abs(std::abs(p.y()) - 1) < 1e-12));
+  }
+  // every vertex is on the surface
+  for(const auto& p : out.points) BOOST_TEST(std::abs(p.z() - 0.3 * (p.x() * p.x() - p.y() * p.y())) < 2e-3);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+}
+
+BOOST_AUTO_TEST_CASE(errors_name_the_problem)
+{
+  const AC::Input_surface square = AC::make_square_background(AC::Uniform_metric(), 50);
+  AC::Remeshing_result r;
+  auto message_of = [&](auto&& f) -> std::string {
+    try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
+    return "(no Invalid_input)";
+  };
+  // vertex counts
+  BOOST_TEST(message_of([&] { AC::remesh(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(2))); })
+               .find("at least 3") != std::string::npos);
+  BOOST_TEST(message_of([&] { AC::remesh(square, AC::Uniform_metric(), r, AC::parameters::random_seed(1u)); })
+               .find("number of output vertices") != std::string::npos);
+  BOOST_TEST(message_of([&] {
+               AC::remesh(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000000)));
+             }).find("exceed") != std::string::npos);
+  // a closed surface (octahedron) is not a disk
+  const AC::Input_surface octa({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                               {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}}, {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}});
+  BOOST_TEST(message_of([&] { AC::remesh(octa, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(4))); })
+               .find("closed surface of genus 0") != std::string::npos);
+  // metric problems name the vertex
+  std::vector<Eigen::Matrix3d> tensors(square.number_of_vertices(), Eigen::Matrix3d::Identity());
+  tensors[5](0, 0) = std::numeric_limits<double>::quiet_NaN();
+  BOOST_TEST(message_of([&] {
+               AC::remesh(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
+             }).find("vertex 5") != std::string::npos);
+  tensors[5] = Eigen::Matrix3d::Identity();
+  tensors[7] = Eigen::Vector3d(1, -1, 0).asDiagonal();
+  BOOST_TEST(message_of([&] {
+               AC::remesh(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
+             }).find("vertex 7: the tensor is not positive definite") != std::string::npos);
+  tensors.pop_back();
+  tensors[7] = Eigen::Matrix3d::Identity();
+  BOOST_TEST(message_of([&] {
+               AC::remesh(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
+             }).find("tensor field has") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(lloyd_also_works)
+{
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const AC::Input_surface bg = AC::make_square_background(metric, 300);
+  AC::Remeshing_result r;
+  const auto out = AC::remesh(bg, metric, r,
+                              AC::parameters::number_of_vertices(std::size_t(300)).cvt_method(AC::Cvt_method::LLOYD));
+  BOOST_TEST(out.points.size() == 300u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+  for(std::size_t i = 1; i < r.cvt.energy.size(); ++i) BOOST_TEST(r.cvt.energy[i] <= r.cvt.energy[i - 1] * (1 + 1e-12));
+}

@@ -1,0 +1,198 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// aniso_remesh: the command-line front end of Aniso_conformal (see --help and the manual).
+
+#include "command_line.h"
+
+#include <Aniso_conformal/Analytic_metric_2.h>
+#include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Image_metric.h>
+#include <Aniso_conformal/IO/read_image.h>
+#include <Aniso_conformal/IO/read_metric_file.h>
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/IO/write_report.h>
+#include <Aniso_conformal/IO/write_svg.h>
+#include <Aniso_conformal/Paper_metrics.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/make_image_background.h>
+#include <Aniso_conformal/make_square_background.h>
+#include <Aniso_conformal/remesh.h>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace AC = Aniso_conformal;
+
+namespace {
+
+// A progress bar on stderr for the iterative stages, only when stderr is a terminal.
+struct Progress_visitor : AC::Default_visitor {
+  bool enabled = false;
+  void on_stage_started(AC::Stage s)
+  {
+    if(enabled) std::fprintf(stderr, "\r%-14s ...%40s", AC::stage_name(s), "");
+  }
+  void on_stage_finished(AC::Stage s, double seconds)
+  {
+    if(enabled) std::fprintf(stderr, "\r%-14s %8.3f s%40s\n", AC::stage_name(s), seconds, "");
+  }
+  bool on_iteration(AC::Stage s, std::size_t it, std::size_t bound, double value)
+  {
+    if(!enabled) return true;
+    const int width = 30, filled = bound ? int(width * std::min<std::size_t>(it, bound) / bound) : width;
+    std::fprintf(stderr, "\r%-14s [%s%s] %zu/%zu  %.4g   ", AC::stage_name(s), std::string(std::size_t(filled), '#').c_str(),
+                 std::string(std::size_t(width - filled), ' ').c_str(), it, bound, value);
+    return true;
+  }
+};
+
+// Writes through a temporary file in the same folder and renames it: no partial file on failure.
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& writer)
+{
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  const std::string ext = (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? path.substr(dot) : "";
+  const std::string tmp = path + ".partial-" + std::to_string(::getpid()) + ext;
+  try {
+    writer(tmp);
+  } catch(...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+  if(std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw AC::Invalid_input("cannot write " + path);
+  }
+}
+
+template <typename Metric>
+int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const Metric& metric, double background_seconds,
+        const std::string& input_name)
+{
+  Progress_visitor progress;
+  progress.enabled = ::isatty(2) && !o.quiet;
+  AC::Remeshing_result result;
+  const auto np = AC::parameters::number_of_vertices(std::size_t(o.vertices))
+                    .number_of_iterations(unsigned(o.iterations))
+                    .random_seed(o.seed)
+                    .cvt_method(o.cvt == "lloyd" ? AC::Cvt_method::LLOYD : AC::Cvt_method::LBFGS)
+                    .corner_angle(o.corner_angle)
+                    .number_of_threads(o.threads)
+                    .visitor(std::ref(progress));
+  const AC::Remeshed_surface out = AC::remesh(surface, metric, result, np);
+
+  if(!o.output.empty())
+    write_atomically(o.output, [&](const std::string& p) { AC::IO::write_polygon_soup(p, out.points, out.faces); });
+  if(!o.report.empty())
+    write_atomically(o.report, [&](const std::string& p) {
+      std::ofstream f(p);
+      if(!f) throw AC::Invalid_input("cannot write " + o.report);
+      AC::IO::write_report_json(f, result,
+                                {{"input_name", AC::IO::internal::json_string(input_name)},
+                                 {"requested_vertices", std::to_string(o.vertices)},
+                                 {"seed", std::to_string(o.seed)},
+                                 {"background_seconds", AC::IO::internal::json_number(background_seconds)}});
+      if(!f) throw AC::Invalid_input("cannot write " + o.report);
+    });
+  if(!o.svg.empty())
+    write_atomically(o.svg, [&](const std::string& p) {
+      AC::IO::write_svg(p, out.points, out.faces, result.quality.triangle_G, 0.5, 1.0,
+                        input_name + ": " + std::to_string(out.points.size()) + " vertices, quality G in the metric");
+    });
+  if(!o.histogram.empty())
+    write_atomically(o.histogram, [&](const std::string& p) {
+      AC::IO::write_histogram_svg(p, result.quality.angle_histogram, result.quality.bin_width,
+                                  input_name + ": angles in the metric");
+    });
+
+  if(!o.quiet) {
+    const AC::Quality_report& q = result.quality;
+    std::printf("input        %s: %zu vertices, %zu faces (background %zu vertices)\n", input_name.c_str(),
+                result.input_vertices, result.input_faces, result.background_vertices);
+    std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu corners, %zu inverted\n",
+                q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles);
+    std::printf("quality      G_min %.4f  G_avg %.4f  theta_min %.2f  theta_avg %.2f  %%<30 %.3f\n", q.G_min, q.G_avg,
+                q.theta_min, q.theta_avg, q.percent_below_30);
+    std::printf("metric edge  normalised length stddev %.3f, min %.3f, max %.3f\n", q.edge_length_stddev,
+                q.edge_length_min, q.edge_length_max);
+    std::printf("stages       flips %zu, splits %zu, Newton %zu (residual %.2g), CVT %zu iterations (%s)\n",
+                result.adjustment.flips, result.adjustment.splits, result.conformal_iterations, result.conformal_residual,
+                result.cvt.iterations, o.cvt.c_str());
+    std::printf("time         background %.3f s, total %.3f s (", background_seconds, background_seconds + result.total_seconds());
+    for(int s = 0; s < AC::number_of_stages; ++s)
+      std::printf("%s%s %.3f", s ? ", " : "", AC::stage_name(AC::Stage(s)), result.seconds[s]);
+    std::printf(")\n");
+  }
+  return 0;
+}
+
+int main_impl(int argc, char** argv)
+{
+  std::vector<std::string> args(argv + 1, argv + argc);
+  const aniso_remesh::Options o = aniso_remesh::parse_command_line(args);
+  if(o.help) { std::fputs(aniso_remesh::usage(), stdout); return 0; }
+  if(o.version) { std::puts("aniso_remesh (Aniso_conformal) 0.1.0"); return 0; }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  auto since = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  if(!o.image.empty()) {
+    const AC::IO::Image img = AC::IO::read_image(o.image);
+    const double s = o.anisotropy > 0 ? o.anisotropy : (img.channels == 1 ? 0.5 : 0.1);
+    const AC::Image_metric metric(img, s);
+    const AC::Input_surface bg = AC::make_image_background(img);
+    return run(o, bg, metric, since(), o.image);
+  }
+  if(!o.domain.empty()) {
+    auto square = [&](const auto& metric) {
+      const AC::Input_surface bg = AC::make_square_background(metric, std::size_t(o.vertices), std::size_t(o.background_vertices));
+      return run(o, bg, metric, since(), "square");
+    };
+    if(o.metric == "fig6") return square(AC::make_analytic_metric_2(AC::Fig6_metric()));
+    if(o.metric == "fig7") return square(AC::make_analytic_metric_2(AC::Circular_metric()));
+    return square(AC::Uniform_metric());
+  }
+  const AC::Input_surface surface = AC::IO::read_triangle_mesh(o.input);
+  if(!o.metric_file.empty())
+    return run(o, surface, AC::IO::read_metric_file(o.metric_file, surface.number_of_vertices()), 0.0, o.input);
+  if(o.metric == "curvature") {
+    AC::Curvature_metric_options co;
+    co.stretch_max = o.stretch_max;
+    co.smoothing_iterations = o.smoothing_iterations;
+    co.smoothing_rings = o.smoothing_rings;
+    return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input);
+  }
+  if(o.metric == "fig6" || o.metric == "fig7") {
+    if(!surface.is_planar())
+      throw AC::Invalid_input("--metric " + o.metric + " is a planar metric; " + o.input + " is not in the plane z = 0");
+    if(o.metric == "fig6") return run(o, surface, AC::make_analytic_metric_2(AC::Fig6_metric()), 0.0, o.input);
+    return run(o, surface, AC::make_analytic_metric_2(AC::Circular_metric()), 0.0, o.input);
+  }
+  return run(o, surface, AC::Uniform_metric(), 0.0, o.input);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  try {
+    return main_impl(argc, argv);
+  } catch(const AC::Invalid_input& e) {
+    std::fprintf(stderr, "aniso_remesh: error: %s\n", e.what());
+    return 2;
+  } catch(const AC::Convergence_failure& e) {
+    // in practice a metric too wild for the input's resolution: an input problem, named in the message
+    std::fprintf(stderr, "aniso_remesh: error: cannot remesh: %s\n", e.what());
+    return 2;
+  } catch(const std::exception& e) {
+    std::fprintf(stderr, "aniso_remesh: internal error: %s\n", e.what());
+    return 1;
+  }
+}
