@@ -94,7 +94,7 @@ public:
       m_total_mass += T.area * (T.rho[0] + T.rho[1] + T.rho[2]) / 3.0;
       T.g = (T.p[0] + T.p[1] + T.p[2]) / 3.0;
       internal::Cell_accumulator whole;
-      internal::integrate_polygon(std::vector<Eigen::Vector2d>(T.p.begin(), T.p.end()), T.r0, T.rg, T.g, whole);
+      internal::integrate_polygon(T.p, 3, T.r0, T.rg, T.g, whole);
       T.mass = whole.mass;
       T.central = whole.energy;
       T.first = Eigen::Vector2d(whole.mx, whole.my) - whole.mass * T.g;
@@ -250,7 +250,7 @@ public:
     while(any_site < int(ns) && start[any_site] == start[any_site + 1] && ns > 1) ++any_site;
     auto work = [&](std::size_t chunk) {
       std::vector<int> stamp(ns, -1), stack;
-      std::vector<Eigen::Vector2d> poly, tmp;
+      internal::Small_polygon poly_a, poly_b;
       int seed = any_site;
       for(std::size_t f = chunk * nf / chunks; f < (chunk + 1) * nf / chunks; ++f) {
         const Background_triangle& T = m_tri[f];
@@ -269,23 +269,21 @@ public:
         while(!stack.empty()) {
           const int s = stack.back();
           stack.pop_back();
-          poly.assign(T.p.begin(), T.p.end());
+          internal::Small_polygon* poly = &poly_a;
+          internal::Small_polygon* tmp = &poly_b;
+          poly->assign(T.p[0], T.p[1], T.p[2]);
           const Eigen::Vector2d& ps = sites[s];
           bool clipped = false;
-          for(int j = start[s]; j < start[s + 1] && !poly.empty(); ++j) {
+          for(int j = start[s]; j < start[s + 1] && poly->n >= 3; ++j) {
             const Eigen::Vector2d& pn = sites[nbr[j]];
-            const Eigen::Vector2d a = 2.0 * (pn - ps);
-            const double b = pn.squaredNorm() - ps.squaredNorm();
-            bool cuts = false;
-            for(const auto& q : poly) cuts = cuts || a.dot(q) > b;
-            if(!cuts) continue;
-            clipped = true;
-            internal::clip_half_plane(poly, a, b, tmp);
-            poly.swap(tmp);
+            if(internal::clip_half_plane(*poly, 2.0 * (pn - ps), pn.squaredNorm() - ps.squaredNorm(), *tmp)) {
+              clipped = true;
+              std::swap(poly, tmp);
+            }
           }
-          if(poly.size() < 3) continue;
+          if(poly->n < 3) continue;
           if(clipped) {
-            internal::integrate_polygon(poly, T.r0, T.rg, ps, acc[chunk][s]);
+            internal::integrate_polygon(poly->p, std::size_t(poly->n), T.r0, T.rg, ps, acc[chunk][s]);
           } else {
             // the whole triangle is in the cell: parallel-axis theorem on the precomputed moments
             internal::Cell_accumulator& A = acc[chunk][s];

@@ -17,30 +17,41 @@ struct Cell_accumulator {
   double mass = 0, mx = 0, my = 0, energy = 0;
 };
 
+// A convex polygon with a fixed capacity: clipping a triangle by the half-planes of one Voronoi cell adds
+// at most one vertex per half-plane, and cells have far fewer than 120 Delaunay neighbours.
+struct Small_polygon {
+  static constexpr int capacity = 128;
+  std::array<Eigen::Vector2d, capacity> p;
+  int n = 0;
+  void assign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c)
+  {
+    p[0] = a;
+    p[1] = b;
+    p[2] = c;
+    n = 3;
+  }
+};
+
 // Sutherland-Hodgman clip of the convex polygon `in` by the half-plane a.p <= b, into `out`.
-inline void clip_half_plane(const std::vector<Eigen::Vector2d>& in, const Eigen::Vector2d& a, double b,
-                            std::vector<Eigen::Vector2d>& out)
+// Returns false (and leaves `out` unspecified) if the half-plane does not cut `in`.
+inline bool clip_half_plane(const Small_polygon& in, const Eigen::Vector2d& a, double b, Small_polygon& out)
 {
-  out.clear();
-  const std::size_t n = in.size();
-  // most half-planes do not cut (the background is finer than the cells): detect that first
-  double f[64];
+  double f[Small_polygon::capacity];
   bool cuts = false;
-  for(std::size_t i = 0; i < n && i < 64; ++i) {
-    f[i] = a.dot(in[i]) - b;
+  for(int i = 0; i < in.n; ++i) {
+    f[i] = a.x() * in.p[i].x() + a.y() * in.p[i].y() - b;
     cuts = cuts || f[i] > 0;
   }
-  if(!cuts && n <= 64) {
-    out = in;
-    return;
+  if(!cuts) return false;
+  out.n = 0;
+  for(int i = 0; i < in.n; ++i) {
+    const int j = (i + 1 == in.n) ? 0 : i + 1;
+    const double fp = f[i], fq = f[j];
+    if(fp <= 0 && out.n < Small_polygon::capacity) out.p[out.n++] = in.p[i];
+    if(((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) && out.n < Small_polygon::capacity)
+      out.p[out.n++] = in.p[i] + (fp / (fp - fq)) * (in.p[j] - in.p[i]);
   }
-  for(std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& p = in[i];
-    const Eigen::Vector2d& q = in[(i + 1) % n];
-    const double fp = a.dot(p) - b, fq = a.dot(q) - b;
-    if(fp <= 0) out.push_back(p);
-    if((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) out.push_back(p + (fp / (fp - fq)) * (q - p));
-  }
+  return true;
 }
 
 // Adds the integrals over the convex polygon `poly` of rho, rho*y and rho*|y - s|^2, with rho the affine
@@ -48,10 +59,10 @@ inline void clip_half_plane(const std::vector<Eigen::Vector2d>& in, const Eigen:
 // int_T l_i l_j l_k = 2A i!j!k!/(i+j+k+2)! (exact: rho is linear, |y - s|^2 quadratic). With q_k the
 // corners relative to s and S = q_0 + q_1 + q_2 this gives
 //   int_T rho |y - s|^2 = A/60 sum_i rho_i (2|S|^2 + 4|q_i|^2 - 2 q_j.q_k),   {i, j, k} = {0, 1, 2}.
-inline void integrate_polygon(const std::vector<Eigen::Vector2d>& poly, double r0, const Eigen::Vector2d& rg,
-                              const Eigen::Vector2d& s, Cell_accumulator& acc)
+template <typename Points>
+void integrate_polygon(const Points& poly, std::size_t n, double r0, const Eigen::Vector2d& rg, const Eigen::Vector2d& s,
+                       Cell_accumulator& acc)
 {
-  const std::size_t n = poly.size();
   if(n < 3) return;
   const double x0 = poly[0].x(), y0 = poly[0].y();
   const double rho0 = r0 + rg.x() * x0 + rg.y() * y0;
@@ -77,6 +88,23 @@ inline void integrate_polygon(const std::vector<Eigen::Vector2d>& poly, double r
     y1 = y2;
     rho1 = rho2;
   }
+}
+
+// std::vector forms of the two functions above (convenient in tests; the CVT uses the fixed-size ones)
+inline void clip_half_plane(const std::vector<Eigen::Vector2d>& in, const Eigen::Vector2d& a, double b,
+                            std::vector<Eigen::Vector2d>& out)
+{
+  Small_polygon p, q;
+  p.n = int(std::min<std::size_t>(in.size(), Small_polygon::capacity));
+  for(int i = 0; i < p.n; ++i) p.p[i] = in[i];
+  const Small_polygon& r = clip_half_plane(p, a, b, q) ? q : p;
+  out.assign(r.p.begin(), r.p.begin() + r.n);
+}
+
+inline void integrate_polygon(const std::vector<Eigen::Vector2d>& poly, double r0, const Eigen::Vector2d& rg,
+                              const Eigen::Vector2d& s, Cell_accumulator& acc)
+{
+  integrate_polygon(poly, poly.size(), r0, rg, s, acc);
 }
 
 } // namespace internal
