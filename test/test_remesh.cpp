@@ -44,7 +44,7 @@ Planar_checks check_planar(const AC::Remeshed_surface& out)
     c.area += 0.5 * ((b - a).cross(d - a)).z();
   }
   for(const auto& p : out.points)
-    for(const Eigen::Vector3d corner : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
+    for(const Eigen::Vector3d& corner : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
                                         Eigen::Vector3d(0, 1, 0)})
       if((p - corner).norm() < 1e-12) ++c.corners_found;
   std::set<std::pair<std::size_t, std::size_t>> directed, edges;

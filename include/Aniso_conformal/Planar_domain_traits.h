@@ -140,8 +140,8 @@ public:
   /// `true` if `p` is in the domain
   bool contains(const Point& p) const
   {
-    int f;
-    Eigen::Vector3d b;
+    int f = -1;
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
     return locate(p, f, b, 0.0);
   }
   /// @}

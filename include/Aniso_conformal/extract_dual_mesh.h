@@ -62,8 +62,8 @@ inline Remeshed_surface extract_dual_mesh(const Input_surface& surface, const In
         out.surface_points[i].position = x;
       }
     } else {
-      int f;
-      Eigen::Vector3d bary;
+      int f = -1;
+      Eigen::Vector3d bary = Eigen::Vector3d::Zero();
       if(!domain.locate(sites[i], f, bary, 1e-6))
         throw Convergence_failure("dual mesh: site " + std::to_string(i) + " lies outside the domain", 0);
       const auto& c = itri.face_vertices(std::size_t(f));
