@@ -150,7 +150,7 @@ public:
   /// @{
   /*!
    * places `n` sites: the boundary sites first (fixed) at the spacing `n` implies, then `n - fixed`
-   * interior sites sampled with probability proportional to the density (deterministic for a `seed`).
+   * interior sites spread over the density (stratified along a space-filling curve; deterministic for a `seed`).
    * `adjusted_area` is the area of the background in the metric (sum of Heron areas of the adjusted lengths).
    * \throws Invalid_input if `n` is smaller than the number of corners plus one or too large for the background
    */
@@ -171,25 +171,29 @@ public:
     m_sites_fixed = m_boundary_sites.size();
     std::vector<Point> sites;
     for(const auto& b : m_boundary_sites) sites.push_back(boundary_point(b));
-    // interior: sample background triangles by mass, then a uniform point inside, kept off the boundary
+    // interior: stratified sampling of the density along the Morton curve of the background triangles
+    // (evenly spaced quantiles of the mass, shifted by one random offset), then a random point in the
+    // chosen triangle. A space-filling-curve sample is already well spread, so the CVT starts close to
+    // its optimum; the seed changes both the offset and the points.
     std::mt19937_64 rng(seed);
     std::vector<double> cdf(m_tri.size());
     double acc = 0;
     for(std::size_t f = 0; f < m_tri.size(); ++f) {
-      acc += m_tri[f].area * (m_tri[f].rho[0] + m_tri[f].rho[1] + m_tri[f].rho[2]);
+      acc += m_tri[f].mass;
       cdf[f] = acc;
     }
     std::uniform_real_distribution<double> U(0.0, 1.0);
-    while(sites.size() < n) {
-      const double r = U(rng) * acc;
-      const std::size_t f = std::size_t(std::lower_bound(cdf.begin(), cdf.end(), r) - cdf.begin());
+    const std::size_t m = n - sites.size();
+    const double offset = U(rng);
+    for(std::size_t k = 0; k < m; ++k) {
+      const double r = (double(k) + offset) / double(m) * acc;
+      const std::size_t f = std::min(m_tri.size() - 1, std::size_t(std::lower_bound(cdf.begin(), cdf.end(), r) - cdf.begin()));
       double a = U(rng), b = U(rng);
       if(a + b > 1) { a = 1 - a; b = 1 - b; }
       // shrink towards the centroid so no site starts on an edge of the domain
-      const Background_triangle& T = m_tri[std::min(f, m_tri.size() - 1)];
-      const Point g = (T.p[0] + T.p[1] + T.p[2]) / 3.0;
+      const Background_triangle& T = m_tri[f];
       const Point p = T.p[0] + a * (T.p[1] - T.p[0]) + b * (T.p[2] - T.p[0]);
-      sites.push_back(g + 0.98 * (p - g));
+      sites.push_back(T.g + 0.98 * (p - T.g));
     }
     return sites;
   }
