@@ -48,7 +48,8 @@ struct Curvature_metric_options {
  * 2. A floor `s_big >= flat_floor * rms(s_big)` makes flat parts isotropic, and the stretch bound
  *    `s_small >= s_big / stretch_max` limits the anisotropy.
  * 3. The field is smoothed (`smoothing_iterations` rounds of averaging over `smoothing_rings`-rings; the
- *    paper needed heavy smoothing, its Fig. 5), re-projected onto the tangent planes, and step 2 is applied
+ *    paper needed heavy smoothing, its Fig. 5), each neighbour's tensor first rotated into the vertex's
+ *    tangent plane (the rotation taking its normal to the vertex's), re-projected, and step 2 is applied
  *    again. The result is scaled so that the median `s_big` is 1 (only the shape matters).
  * \throws Invalid_input for options out of range
  */
@@ -142,8 +143,20 @@ public:
       for(int it = 0; it < o.smoothing_iterations; ++it) {
         for(std::size_t v = 0; v < n; ++v) {
           Tensor acc = Tensor::Zero();
-          for(std::size_t w : ring[v]) acc += M[w];
-          tmp[v] = acc / double(ring[v].size());
+          std::size_t used = 0;
+          for(std::size_t w : ring[v]) {
+            // transport M[w] into v's tangent plane first: averaging tensors of differently oriented
+            // tangent planes in space would leak their strong part into the normal and lose anisotropy
+            const Eigen::Vector3d k = N[w].cross(N[v]);
+            const double c = N[w].dot(N[v]);
+            if(c <= -0.5) continue;  // folded neighbourhood: its tensor does not describe v
+            Tensor K;
+            K << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
+            const Tensor R = Tensor::Identity() + K + K * K / (1 + c);
+            acc += R * M[w] * R.transpose();
+            ++used;
+          }
+          tmp[v] = acc / double(used);  // v itself is always used
         }
         M.swap(tmp);
       }

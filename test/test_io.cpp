@@ -1,0 +1,353 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Tests of the input/output module and of what it feeds: mesh, metric-file and image readers with
+// their error messages, the image metric, the square, rectangle and image backgrounds, the Input_surface
+// validation, the SVG and JSON writers, and the disk-topology surface that ships with the library.
+
+#define BOOST_TEST_MODULE Aniso_conformal_io
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/IO/read_image.h>
+#include <Aniso_conformal/IO/read_metric_file.h>
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/IO/write_report.h>
+#include <Aniso_conformal/IO/write_svg.h>
+#include <Aniso_conformal/Image_metric.h>
+#include <Aniso_conformal/Paper_metrics.h>
+#include <Aniso_conformal/Analytic_metric_2.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/make_image_background.h>
+#include <Aniso_conformal/make_square_background.h>
+#include <Aniso_conformal/remesh.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace AC = Aniso_conformal;
+
+namespace {
+
+const std::string out_dir = ANISO_CONFORMAL_TEST_OUTPUT_DIR;
+const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
+
+std::string write_file(const std::string& name, const std::string& content)
+{
+  const std::string path = out_dir + "/" + name;
+  std::ofstream(path, std::ios::binary) << content;
+  return path;
+}
+
+std::string message_of(const std::function<void()>& f)
+{
+  try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
+  return "(no Invalid_input)";
+}
+
+bool contains(const std::string& s, const std::string& part)
+{
+  if(s.find(part) != std::string::npos) return true;
+  BOOST_TEST_MESSAGE("'" << s << "' does not contain '" << part << "'");
+  return false;
+}
+
+const std::string tetra_off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+
+} // namespace
+
+// ------------------------------------------------------------------------------- meshes
+
+BOOST_AUTO_TEST_CASE(mesh_files_round_trip_in_every_format)
+{
+  const AC::Input_surface sq = AC::make_rectangle_background(1.0, 0.5, 5, 3);
+  BOOST_TEST(sq.number_of_vertices() == 15u);
+  BOOST_TEST(sq.number_of_faces() == 16u);
+  BOOST_TEST(sq.is_disk());
+  BOOST_TEST(sq.is_planar());
+  for(const std::string ext : {"off", "obj", "ply"}) {
+    const std::string path = out_dir + "/roundtrip." + ext;
+    std::vector<std::array<std::size_t, 3>> faces(sq.faces().begin(), sq.faces().end());
+    AC::IO::write_polygon_soup(path, sq.points(), faces);
+    const AC::Input_surface back = AC::IO::read_triangle_mesh(path);
+    BOOST_TEST(back.number_of_vertices() == sq.number_of_vertices());
+    BOOST_TEST(back.number_of_faces() == sq.number_of_faces());
+    for(std::size_t v = 0; v < sq.number_of_vertices(); ++v) BOOST_TEST((back.points()[v] - sq.points()[v]).norm() == 0.0);
+  }
+  const AC::Input_surface tet = AC::IO::read_triangle_mesh(write_file("tetra.off", tetra_off));
+  BOOST_TEST(!tet.is_disk());
+  BOOST_TEST(contains(tet.topology_description(), "closed surface of genus 0"));
+}
+
+BOOST_AUTO_TEST_CASE(bad_mesh_files_name_the_problem)
+{
+  BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(out_dir + "/missing.off"); }), "missing.off: cannot be opened"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(write_file("mesh.stl", "solid x\n")); }), "unsupported extension"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(write_file("garbage.off", "this is not a mesh\n")); }),
+                      "garbage.off"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(write_file("empty.off", "")); }), "empty.off"));
+  BOOST_TEST(contains(message_of([] {
+                        AC::IO::read_triangle_mesh(write_file("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"));
+                      }),
+                      "face 0 has 4 vertices"));
+  BOOST_TEST(contains(message_of([] {
+                        AC::IO::read_triangle_mesh(write_file("nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"));
+                      }),
+                      "nan.off"));
+  // non-manifold edge: three triangles on the edge 0-1
+  BOOST_TEST(contains(message_of([] {
+                        AC::IO::read_triangle_mesh(write_file(
+                            "fin.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n"));
+                      }),
+                      "edge"));
+  // zero-area face
+  BOOST_TEST(contains(message_of([] {
+                        AC::IO::read_triangle_mesh(write_file("flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n"));
+                      }),
+                      "face 0 is degenerate"));
+  // two triangles touching at one vertex: a non-manifold vertex
+  BOOST_TEST(contains(message_of([] {
+                        AC::IO::read_triangle_mesh(write_file(
+                            "bowtie.off", "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n"));
+                      }),
+                      "vertex 0 is non-manifold"));
+  // two separate triangles
+  BOOST_TEST(contains(message_of([] {
+                        AC::IO::read_triangle_mesh(write_file(
+                            "two.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n5 0 0\n6 0 0\n5 1 0\n3 0 1 2\n3 3 4 5\n"));
+                      }),
+                      "2 connected components"));
+  // an index out of range
+  BOOST_TEST(contains(message_of([] { AC::Input_surface({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{{0, 1, 7}}}); }),
+                      "face 0 refers to vertex 7"));
+  // write errors
+  BOOST_TEST(contains(message_of([] {
+                        AC::IO::write_polygon_soup(out_dir + "/no/such/dir/x.off", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{{0, 1, 2}}});
+                      }),
+                      "cannot write"));
+}
+
+BOOST_AUTO_TEST_CASE(bundled_face_mask_remeshes_as_a_disk)
+{
+  // nefertiti.off: a 299-vertex face scan of disk topology, with a curvature metric
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/nefertiti.off");
+  BOOST_REQUIRE(s.is_disk());
+  AC::Curvature_metric_options o;
+  o.stretch_max = 4;
+  const AC::Curvature_metric metric(s, o);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(std::size_t(250)));
+  BOOST_TEST(out.points.size() == 250u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  // one disk: Euler characteristic 1, one boundary loop made of the boundary sites
+  std::set<std::pair<std::size_t, std::size_t>> directed, edges;
+  for(const auto& f : out.faces)
+    for(int k = 0; k < 3; ++k) {
+      directed.insert({f[k], f[(k + 1) % 3]});
+      edges.insert(std::minmax(f[k], f[(k + 1) % 3]));
+    }
+  BOOST_TEST(int(out.points.size()) - int(edges.size()) + int(out.faces.size()) == 1);
+  std::size_t boundary_edges = 0;
+  for(const auto& d : directed)
+    if(!directed.count({d.second, d.first})) ++boundary_edges;
+  BOOST_TEST(boundary_edges == r.boundary_sites);
+  // every output vertex lies on the input: its surface point reproduces it
+  for(std::size_t i = 0; i < out.points.size(); ++i) {
+    const AC::Surface_point& sp = out.surface_points[i];
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for(int k = 0; k < 3; ++k) p += sp.barycentric[k] * s.points()[sp.vertices[k]];
+    BOOST_TEST((p - out.points[i]).norm() < 1e-9);
+  }
+  BOOST_TEST(r.quality.G_avg > 0.75);
+}
+
+// ------------------------------------------------------------------------------ metric files
+
+BOOST_AUTO_TEST_CASE(metric_files_round_trip_and_errors)
+{
+  std::vector<Eigen::Matrix3d> t(4, Eigen::Matrix3d::Identity());
+  t[2] << 2, 0.5, 0, 0.5, 3, 0, 0, 0, 0;
+  const std::string path = out_dir + "/metric.txt";
+  AC::IO::write_metric_file(path, t);
+  const AC::Tensor_field_metric m = AC::IO::read_metric_file(path, 4);
+  BOOST_REQUIRE(m.tensors().size() == 4u);
+  for(std::size_t i = 0; i < 4; ++i) BOOST_TEST((m.tensors()[i] - t[i]).norm() == 0.0);
+
+  const std::string row = "1 0 0 1 0 1\n";
+  BOOST_TEST(contains(message_of([] { AC::IO::read_metric_file(out_dir + "/missing_metric.txt", 4); }), "cannot be opened"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_count.txt", "3\n" + row + row + row), 4); }),
+                      "declares 3 tensors but the mesh has 4"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_short.txt", "2\n" + row), 2); }), "1 rows"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_long.txt", "1\n" + row + row), 1); }),
+                      "line 3: more rows than the 1 declared"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_nan.txt", "2\n" + row + "1 0 nan 1 0 1\n"), 2); }),
+                      "line 3"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_nan2.txt", "1\n1 0 nan 1 0 1\n"), 1); }),
+                      "non-finite"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_five.txt", "1\n1 0 0 1 0\n"), 1); }),
+                      "5 numbers, expected 6"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_word.txt", "1\n1 0 0 one 0 1\n"), 1); }),
+                      "'one' is not a number"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_head.txt", "four\n"), 1); }),
+                      "the first line must be the number of vertices"));
+}
+
+// ------------------------------------------------------------------------------------ images
+
+BOOST_AUTO_TEST_CASE(images_read_in_every_format)
+{
+  const AC::IO::Image chelsea = AC::IO::read_image(data_dir + "/images/photo_chelsea_323.png");
+  BOOST_TEST(chelsea.width == 323);
+  BOOST_TEST(chelsea.height == 323);
+  BOOST_TEST(chelsea.channels == 3);
+  const AC::IO::Image ct = AC::IO::read_image(data_dir + "/images/ct_head_211.png");
+  BOOST_TEST(ct.width == 211);
+  BOOST_TEST(ct.channels == 1);
+  float lo = 1, hi = 0;
+  for(float x : ct.data) { lo = std::min(lo, x); hi = std::max(hi, x); }
+  BOOST_TEST((lo >= 0 && hi <= 1 && hi - lo > 0.5));
+
+  // PNM round trip (binary) and an ASCII PGM with a comment
+  AC::IO::write_pnm(chelsea, out_dir + "/chelsea.ppm");
+  const AC::IO::Image back = AC::IO::read_image(out_dir + "/chelsea.ppm");
+  BOOST_TEST(back.width == 323);
+  BOOST_TEST(back.channels == 3);
+  double diff = 0;
+  for(std::size_t i = 0; i < back.data.size(); ++i) diff = std::max(diff, double(std::abs(back.data[i] - chelsea.data[i])));
+  BOOST_TEST(diff < 1.0 / 255 + 1e-6);
+  const AC::IO::Image a = AC::IO::read_image(write_file("ascii.pgm", "P2\n# a comment\n3 2\n255\n0 128 255\n255 0 64\n"));
+  BOOST_TEST(a.width == 3);
+  BOOST_TEST(a.height == 2);
+  BOOST_TEST(a.at(2, 0, 0) == 1.0f);
+  BOOST_TEST(a.at(0, 1, 0) == 1.0f);
+  BOOST_TEST(std::abs(a.at(1, 0, 0) - 128.0f / 255) < 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(bad_images_name_the_problem)
+{
+  BOOST_TEST(contains(message_of([] { AC::IO::read_image(out_dir + "/missing.png"); }), "missing.png: cannot be opened"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_image(write_file("text.png", "hello")); }), "not a PNG, PGM or PPM"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_image(write_file("short.pgm", "P5\n4 4\n255\nab")); }), "truncated"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_image(write_file("zero.pgm", "P2\n0 4\n255\n")); }), "zero size"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_image(write_file("max.pgm", "P2\n1 1\n70000\n1\n")); }), "maxval"));
+  // a PNG cut in the middle of its data
+  std::ifstream in(data_dir + "/images/ct_head_211.png", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  BOOST_REQUIRE(bytes.size() > 2000);
+  const std::string cut = write_file("cut.png", bytes.substr(0, bytes.size() / 2));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_image(cut); }), "cut.png"));
+  // corrupt compressed data
+  std::string corrupt = bytes;
+  for(std::size_t i = 200; i < 600; ++i) corrupt[i] = char(i * 7);
+  const std::string bad = write_file("corrupt.png", corrupt);
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_image(bad); }), "corrupt.png"));
+}
+
+BOOST_AUTO_TEST_CASE(image_metric_stretches_across_edges)
+{
+  // a vertical step edge in the middle of a grey image: short edges across it (x), isotropic far away
+  AC::IO::Image img;
+  img.width = 41;
+  img.height = 21;
+  img.channels = 1;
+  for(int y = 0; y < img.height; ++y)
+    for(int x = 0; x < img.width; ++x) img.data.push_back(x < 20 ? 0.f : 1.f);
+  const AC::Image_metric m(img, 0.5);
+  AC::Surface_point at_edge, far;
+  at_edge.position = Eigen::Vector3d(19.5 / 40, 0.25, 0);
+  far.position = Eigen::Vector3d(0.02, 0.25, 0);
+  const Eigen::Matrix3d M = m.tensor(at_edge), F = m.tensor(far);
+  BOOST_TEST(M(0, 0) > 10 * M(1, 1));
+  BOOST_TEST(std::abs(M(1, 1) - 1) < 1e-6);
+  BOOST_TEST((F - Eigen::Vector3d(1, 1, 0).asDiagonal().toDenseMatrix()).norm() < 1e-3);
+  BOOST_TEST(M(2, 2) == 0.0);
+  // the background matches the metric's coordinates: one vertex per pixel, unit width
+  const AC::Input_surface bg = AC::make_image_background(img);
+  BOOST_TEST(bg.number_of_vertices() == 41u * 21u);
+  BOOST_TEST(std::abs(bg.points().back().x() - 1) < 1e-15);
+  BOOST_TEST(std::abs(bg.points().back().y() - 0.5) < 1e-15);
+
+  BOOST_TEST(contains(message_of([&] { AC::Image_metric(img, 0.0); }), "anisotropy s must be positive"));
+  BOOST_TEST(contains(message_of([&] { AC::Image_metric(img, std::nan("")); }), "anisotropy"));
+  AC::IO::Image tiny = img;
+  tiny.width = 1;
+  BOOST_TEST(contains(message_of([&] { AC::make_image_background(tiny); }), "at least 2 x 2"));
+}
+
+BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
+{
+  // a small crop of the CT image remeshes with its rectangle kept
+  const AC::IO::Image ct = AC::IO::read_image(data_dir + "/images/ct_head_211.png");
+  AC::IO::Image crop;
+  crop.width = 60;
+  crop.height = 50;
+  crop.channels = 1;
+  for(int y = 0; y < crop.height; ++y)
+    for(int x = 0; x < crop.width; ++x) crop.data.push_back(ct.at(x + 80, y + 80, 0));
+  const AC::Image_metric metric(crop, 0.5);
+  const AC::Input_surface bg = AC::make_image_background(crop);
+  AC::Remeshing_result r;
+  const auto out = AC::remesh(bg, metric, r, AC::parameters::number_of_vertices(std::size_t(400)));
+  BOOST_TEST(out.points.size() == 400u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.corners == 4u);
+  double area = 0;
+  for(const auto& f : out.faces)
+    area += 0.5 * (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]).z();
+  BOOST_TEST(std::abs(area - 49.0 / 59.0) < 1e-9);
+  BOOST_TEST(r.quality.G_avg > 0.75);
+
+  // the JSON report and the pictures are written and well formed
+  std::ostringstream json;
+  AC::IO::write_report_json(json, r, {{"input_name", "\"crop\""}});
+  const std::string j = json.str();
+  for(const char* key : {"\"G_avg\"", "\"angle_histogram\"", "\"flips\"", "\"energy\"", "\"input_name\""})
+    BOOST_TEST(contains(j, key));
+  BOOST_TEST(std::count(j.begin(), j.end(), '{') == std::count(j.begin(), j.end(), '}'));
+  AC::IO::write_svg(out_dir + "/crop.svg", out.points, out.faces, r.quality.triangle_G, 0.5, 1.0, "crop & <test>");
+  AC::IO::write_histogram_svg(out_dir + "/crop_hist.svg", r.quality.angle_histogram, r.quality.bin_width, "angles");
+  std::ifstream svg(out_dir + "/crop.svg");
+  const std::string s((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  BOOST_TEST(std::count(s.begin(), s.end(), '\n') > std::ptrdiff_t(out.faces.size()));
+  BOOST_TEST(contains(s, "crop &amp; &lt;test&gt;"));
+  BOOST_TEST(contains(s, "</svg>"));
+  BOOST_TEST(contains(message_of([&] {
+                        AC::IO::write_svg(out_dir + "/no/such/dir/x.svg", out.points, out.faces, r.quality.triangle_G, 0, 1, "");
+                      }),
+                      "cannot write"));
+}
+
+// --------------------------------------------------------------------------- square background
+
+BOOST_AUTO_TEST_CASE(square_background_resolves_the_metric)
+{
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const AC::Input_surface bg = AC::make_square_background(metric, 1000);
+  BOOST_TEST(bg.is_disk());
+  BOOST_TEST(bg.number_of_vertices() > 3000u);  // paper: 5112
+  BOOST_TEST(bg.number_of_vertices() < 8000u);
+  double area = 0;
+  for(const auto& f : bg.faces())
+    area += 0.5 * (bg.points()[f[1]] - bg.points()[f[0]]).cross(bg.points()[f[2]] - bg.points()[f[0]]).z();
+  BOOST_TEST(std::abs(area - 1) < 1e-12);
+  // graded like the metric: denser near the origin corner, where the metric is largest
+  std::size_t near = 0, far = 0;
+  for(const auto& p : bg.points()) {
+    if(p.x() < 0.25 && p.y() < 0.25) ++near;
+    if(p.x() > 0.75 && p.y() > 0.75) ++far;
+  }
+  BOOST_TEST(near > 10 * far);
+  BOOST_TEST(AC::make_square_background(AC::Uniform_metric(), 100, 2000).number_of_vertices() >= 2000u);
+  BOOST_TEST(contains(message_of([] { AC::make_square_background(AC::Uniform_metric(), 3); }), "at least 4 output vertices"));
+  BOOST_TEST(contains(message_of([] {
+                        AC::make_square_background(AC::make_analytic_metric_2([](double, double) {
+                                                     return Eigen::Matrix2d(Eigen::Matrix2d::Identity() * std::nan(""));
+                                                   }),
+                                                   100);
+                      }),
+                      "not finite and positive definite"));
+}

@@ -1,0 +1,444 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Unit tests of the pipeline's stages, each called on its own: the metric models (incl. the curvature
+// metric on a sphere, a cylinder and a saddle), metric square roots, the intrinsic triangulation,
+// edge-length adjustment, the conformal embedding, the weighted CVT, the dual mesh and the quality module.
+
+#define BOOST_TEST_MODULE Aniso_conformal_stages
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Analytic_metric_2.h>
+#include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/Paper_metrics.h>
+#include <Aniso_conformal/Planar_domain_traits.h>
+#include <Aniso_conformal/Tensor_field_metric.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/conformal_embedding.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/make_square_background.h>
+#include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+namespace AC = Aniso_conformal;
+
+namespace {
+
+const double pi = 3.14159265358979323846;
+
+// A (nu x nv) grid over [0,1]^2 mapped through `f`, split into triangles; `closed_u` wraps u around.
+template <typename F>
+AC::Input_surface grid_surface(int nu, int nv, F f, bool closed_u = false)
+{
+  std::vector<Eigen::Vector3d> pts;
+  std::vector<AC::Input_surface::Face> faces;
+  const int cols = closed_u ? nu : nu + 1;
+  for(int j = 0; j <= nv; ++j)
+    for(int i = 0; i < cols; ++i) pts.push_back(f(double(i) / nu, double(j) / nv));
+  for(int j = 0; j < nv; ++j)
+    for(int i = 0; i < nu; ++i) {
+      const std::size_t a = std::size_t(j * cols + i), b = std::size_t(j * cols + (i + 1) % cols),
+                        c = b + std::size_t(cols), d = a + std::size_t(cols);
+      faces.push_back({{a, b, c}});
+      faces.push_back({{a, c, d}});
+    }
+  return AC::Input_surface(pts, faces);
+}
+
+// A UV sphere of radius r (poles as single vertices).
+AC::Input_surface uv_sphere(int nu, int nv, double r)
+{
+  std::vector<Eigen::Vector3d> pts{{0, 0, -r}};
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 1; j < nv; ++j)
+    for(int i = 0; i < nu; ++i) {
+      const double th = pi * j / nv, ph = 2 * pi * i / nu;
+      pts.emplace_back(r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), -r * std::cos(th));
+    }
+  pts.emplace_back(0, 0, r);
+  auto id = [&](int j, int i) { return std::size_t(1 + (j - 1) * nu + (i % nu)); };
+  const std::size_t top = pts.size() - 1;
+  for(int i = 0; i < nu; ++i) {
+    faces.push_back({{0, id(1, i + 1), id(1, i)}});
+    faces.push_back({{top, id(nv - 1, i), id(nv - 1, i + 1)}});
+  }
+  for(int j = 1; j + 1 < nv; ++j)
+    for(int i = 0; i < nu; ++i) {
+      faces.push_back({{id(j, i), id(j, i + 1), id(j + 1, i + 1)}});
+      faces.push_back({{id(j, i), id(j + 1, i + 1), id(j + 1, i)}});
+    }
+  return AC::Input_surface(pts, faces);
+}
+
+bool triangle_inequality_everywhere(const AC::Intrinsic_triangulation& t)
+{
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const double a = t.length(int(3 * f)), b = t.length(int(3 * f + 1)), c = t.length(int(3 * f + 2));
+    if(!(a < b + c && b < a + c && c < a + b)) return false;
+  }
+  return true;
+}
+
+std::string invalid_input_message(const std::function<void()>& f)
+{
+  try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
+  return "(no Invalid_input)";
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------- metrics
+
+BOOST_AUTO_TEST_CASE(simple_metric_models)
+{
+  const AC::Surface_point p = AC::Surface_point::at_vertex(0, Eigen::Vector3d(0.25, 0.5, 0));
+  BOOST_TEST((AC::Uniform_metric().tensor(p) - Eigen::Matrix3d::Identity()).norm() == 0.0);
+
+  const auto fig6 = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const Eigen::Matrix3d M = fig6.tensor(p);
+  BOOST_TEST(std::abs(M(0, 0) - 1.0 / std::pow(0.281, 2)) < 1e-9);
+  BOOST_TEST(std::abs(M(1, 1) - 1.0 / std::pow(0.531, 2)) < 1e-9);
+  BOOST_TEST(M(2, 2) == 0.0);
+
+  // the circular field: isotropic at the centre and beyond r0, stretch 10 along the circle r = 0.3
+  const AC::Circular_metric circ;
+  BOOST_TEST((circ(0.5, 0.5) - Eigen::Matrix2d::Identity()).norm() < 1e-12);
+  BOOST_TEST((circ(0.5 + 0.7, 0.5) - Eigen::Matrix2d::Identity()).norm() < 1e-12);
+  const Eigen::Matrix2d m = circ(0.8, 0.5);  // r = 0.3 on the x axis: tangent is y
+  BOOST_TEST(std::abs(m(1, 1) - 100) < 1e-9);
+  BOOST_TEST(std::abs(m(0, 0) - 1) < 1e-9);
+  AC::Circular_metric radial;
+  radial.radial = true;
+  BOOST_TEST(std::abs(radial(0.8, 0.5)(0, 0) - 100) < 1e-9);
+
+  // the tensor field interpolates barycentrically
+  std::vector<Eigen::Matrix3d> t(3, Eigen::Matrix3d::Identity());
+  t[1] *= 4;
+  AC::Surface_point q;
+  q.vertices = {{0, 1, 2}};
+  q.barycentric = Eigen::Vector3d(0.5, 0.5, 0);
+  BOOST_TEST((AC::Tensor_field_metric(t).tensor(q) - 2.5 * Eigen::Matrix3d::Identity()).norm() < 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(curvature_metric_on_a_sphere_is_isotropic)
+{
+  const AC::Input_surface s = uv_sphere(48, 24, 2.0);
+  AC::Curvature_metric_options o;
+  o.smoothing_iterations = 0;
+  const AC::Curvature_metric m(s, o);
+  std::size_t checked = 0;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v) {
+    const double z = s.points()[v].z();
+    if(std::abs(z) > 1.2) continue;  // away from the poles of the UV sphere
+    BOOST_TEST(std::abs(m.max_curvatures()[v] - 0.5) < 0.05);
+    BOOST_TEST(std::abs(m.min_curvatures()[v] - 0.5) < 0.05);
+    BOOST_TEST(m.stretch_ratios()[v] < 1.15);
+    ++checked;
+  }
+  BOOST_TEST(checked > 300u);
+}
+
+BOOST_AUTO_TEST_CASE(curvature_metric_on_a_cylinder_follows_the_axis)
+{
+  // a cylinder of radius 0.5 around z, open at both ends
+  const double r = 0.5;
+  const AC::Input_surface s = grid_surface(64, 24, [&](double u, double v) {
+    return Eigen::Vector3d(r * std::cos(2 * pi * u), r * std::sin(2 * pi * u), 2 * v);
+  }, true);
+  AC::Curvature_metric_options o;
+  o.stretch_max = 8;
+  const AC::Curvature_metric m(s, o);
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v) {
+    const Eigen::Vector3d& p = s.points()[v];
+    if(p.z() < 0.3 || p.z() > 1.7) continue;  // boundary rings see half a neighbourhood
+    BOOST_TEST(std::abs(std::abs(m.max_curvatures()[v]) - 1 / r) < 0.1);
+    BOOST_TEST(std::abs(m.min_curvatures()[v]) < 0.1);
+    BOOST_TEST(std::abs(m.stretch_ratios()[v] - 8) < 1e-6);  // the bound is reached
+    // short edges around the cylinder, long along the axis
+    const Eigen::Matrix3d& M = m.tensors()[v];
+    const Eigen::Vector3d around = Eigen::Vector3d(-p.y(), p.x(), 0).normalized(), axis(0, 0, 1);
+    BOOST_TEST(std::abs(around.dot(M * around) / axis.dot(M * axis) - 64) < 1.0);
+    BOOST_TEST(std::abs((M * p.cwiseProduct(Eigen::Vector3d(1, 1, 0)).normalized()).norm()) < 1e-9);  // zero along the normal
+  }
+}
+
+BOOST_AUTO_TEST_CASE(curvature_metric_on_a_saddle_and_bad_options)
+{
+  // z = (x^2 - y^2) / 2: principal curvatures +1 and -1 at the origin
+  const AC::Input_surface s = grid_surface(40, 40, [](double u, double v) {
+    const double x = 0.6 * (2 * u - 1), y = 0.6 * (2 * v - 1);
+    return Eigen::Vector3d(x, y, 0.5 * (x * x - y * y));
+  });
+  AC::Curvature_metric_options o;
+  o.smoothing_iterations = 0;
+  const AC::Curvature_metric m(s, o);
+  const std::size_t centre = 20 * 41 + 20;
+  BOOST_TEST(s.points()[centre].norm() < 1e-12);
+  BOOST_TEST(std::abs(std::abs(m.max_curvatures()[centre]) - 1) < 0.1);
+  BOOST_TEST(std::abs(std::abs(m.min_curvatures()[centre]) - 1) < 0.1);
+  BOOST_TEST(m.max_curvatures()[centre] * m.min_curvatures()[centre] < 0);  // negative Gauss curvature
+  BOOST_TEST(m.stretch_ratios()[centre] < 1.2);
+  for(double r : m.stretch_ratios()) BOOST_TEST((r >= 1 - 1e-12 && r <= o.stretch_max + 1e-9));
+
+  AC::Curvature_metric_options bad;
+  bad.stretch_max = 0.5;
+  BOOST_TEST(invalid_input_message([&] { AC::Curvature_metric(s, bad); }).find("stretch_max") != std::string::npos);
+  bad = AC::Curvature_metric_options();
+  bad.smoothing_rings = 0;
+  BOOST_TEST(invalid_input_message([&] { AC::Curvature_metric(s, bad); }).find("smoothing") != std::string::npos);
+}
+
+// ------------------------------------------------------------------------ metric square roots
+
+BOOST_AUTO_TEST_CASE(metric_square_roots_and_their_errors)
+{
+  const AC::Input_surface sq = grid_surface(4, 4, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  const auto metric = AC::make_analytic_metric_2(AC::Circular_metric());
+  const std::vector<Eigen::Matrix3d> Q = AC::compute_metric_square_roots(sq, metric);
+  BOOST_REQUIRE(Q.size() == sq.number_of_vertices());
+  for(std::size_t v = 0; v < Q.size(); ++v) {
+    const Eigen::Matrix3d M = metric.tensor(AC::Surface_point::at_vertex(v, sq.points()[v]));
+    BOOST_TEST((Q[v] * Q[v] - M).norm() < 1e-9 * M.norm());
+    BOOST_TEST((Q[v] - Q[v].transpose()).norm() < 1e-12);
+  }
+  std::vector<Eigen::Matrix3d> t(sq.number_of_vertices(), Eigen::Matrix3d::Identity());
+  t[3](0, 1) = 0.5;  // not symmetric
+  BOOST_TEST(invalid_input_message([&] { AC::compute_metric_square_roots(sq, AC::Tensor_field_metric(t)); })
+               .find("vertex 3: the tensor is not symmetric") != std::string::npos);
+  t[3] = Eigen::Vector3d(0, 0, 1).asDiagonal();  // positive only along the normal
+  BOOST_TEST(invalid_input_message([&] { AC::compute_metric_square_roots(sq, AC::Tensor_field_metric(t)); })
+               .find("vertex 3: the tensor is not positive definite on the tangent plane") != std::string::npos);
+}
+
+// ------------------------------------------------------------------ intrinsic triangulation
+
+BOOST_AUTO_TEST_CASE(intrinsic_flips_and_splits_keep_the_mesh_valid)
+{
+  const AC::Input_surface sq = grid_surface(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  AC::Intrinsic_triangulation t(sq, AC::compute_metric_square_roots(sq, AC::Uniform_metric()));
+  t.validate();
+  AC::compute_metric_edge_lengths(t);
+  t.validate(true);
+  BOOST_TEST(std::abs(t.length(0) - 1.0 / 3) < 1e-15);
+  BOOST_TEST(t.number_of_vertices() == 16u);
+  BOOST_TEST(t.number_of_faces() == 18u);
+  // flip an interior diagonal twice: back to the same edge set
+  int h = -1;
+  for(std::size_t i = 0; i < t.number_of_halfedges() && h < 0; ++i)
+    if(!t.is_boundary_edge(int(i))) h = int(i);
+  const std::set<int> ends{t.tail(h), t.head(h)};
+  // the flip leaves the new edge's length to the caller; in this flat Euclidean case it is the distance
+  auto set_euclidean = [&t](int e) { t.set_length(e, (t.position(t.head(e)) - t.position(t.tail(e))).norm()); };
+  const int g = t.flip(h);
+  BOOST_TEST(std::isnan(t.length(g)));
+  set_euclidean(g);
+  t.validate(true);
+  const std::set<int> flipped{t.tail(g), t.head(g)};
+  BOOST_TEST((flipped != ends));
+  const int back = t.flip(g);
+  set_euclidean(back);
+  BOOST_TEST((std::set<int>{t.tail(back), t.head(back)} == ends));
+  t.validate(true);
+  BOOST_TEST(triangle_inequality_everywhere(t));
+  // split an interior edge at its midpoint: +1 vertex, +2 faces, two halves and two new edges
+  const double len = t.length(back);
+  const Eigen::Vector3d mid = 0.5 * (t.position(t.tail(back)) + t.position(t.head(back)));
+  const int v = t.split(back, sq.project(mid), Eigen::Matrix3d::Identity());
+  BOOST_TEST(t.number_of_vertices() == 17u);
+  BOOST_TEST(t.number_of_faces() == 20u);
+  BOOST_TEST((t.position(v) - mid).norm() < 1e-15);
+  const std::vector<int> out = t.outgoing_halfedges(v);
+  BOOST_TEST(out.size() == 4u);
+  for(int o : out) set_euclidean(o);
+  t.validate(true);
+  BOOST_TEST(triangle_inequality_everywhere(t));
+  double halves = 0;
+  for(int o : out)
+    if(std::abs(t.length(o) - 0.5 * len) < 1e-12) halves += t.length(o);
+  BOOST_TEST(std::abs(halves - len) < 1e-12);
+}
+
+// ----------------------------------------------------------------------- edge-length adjustment
+
+BOOST_AUTO_TEST_CASE(adjustment_repairs_a_strongly_anisotropic_metric)
+{
+  // a coarse square under a metric stretched 40x along a diagonal: many triangles are invalid at first
+  const AC::Input_surface sq = grid_surface(12, 12, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  const auto metric = AC::make_analytic_metric_2([](double x, double y) {
+    const Eigen::Vector2d d = Eigen::Vector2d(1, 1 + 0.5 * std::sin(3 * x + y)).normalized();
+    return Eigen::Matrix2d(Eigen::Matrix2d::Identity() + (1600.0 - 1) * d * d.transpose());
+  });
+  AC::Intrinsic_triangulation t(sq, AC::compute_metric_square_roots(sq, metric));
+  const AC::Edge_adjustment_report r = AC::adjust_edge_lengths(t, sq);
+  BOOST_TEST(r.invalid_triangles_before > 0u);
+  BOOST_TEST(r.flips > 0u);
+  BOOST_TEST(triangle_inequality_everywhere(t));
+  t.validate(true);
+  BOOST_TEST(t.number_of_vertices() == sq.number_of_vertices() + r.splits);
+  // every vertex is still on the square and boundary vertices stay on its boundary
+  for(std::size_t v = 0; v < t.number_of_vertices(); ++v) {
+    const Eigen::Vector3d p = t.position(int(v));
+    BOOST_TEST((p.x() >= -1e-12 && p.x() <= 1 + 1e-12 && p.y() >= -1e-12 && p.y() <= 1 + 1e-12 && p.z() == 0.0));
+  }
+
+  // the bound is enforced: zero rounds cannot repair it
+  AC::Intrinsic_triangulation t2(sq, AC::compute_metric_square_roots(sq, metric));
+  bool threw = false;
+  try {
+    AC::adjust_edge_lengths(t2, sq, AC::parameters::max_adjustment_rounds(0u));
+  } catch(const AC::Convergence_failure& e) {
+    threw = std::string(e.what()).find("edge-length adjustment") != std::string::npos && e.residual() > 0;
+  }
+  BOOST_TEST(threw);
+}
+
+// ----------------------------------------------------------------------------- conformal embedding
+
+BOOST_AUTO_TEST_CASE(embedding_of_a_flat_square_is_the_identity_up_to_a_motion)
+{
+  const AC::Input_surface sq = grid_surface(10, 10, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  AC::Intrinsic_triangulation t(sq, AC::compute_metric_square_roots(sq, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  const AC::Planar_embedding emb = AC::conformal_embedding(t);
+  BOOST_TEST(emb.residual < 1e-9);
+  for(double u : emb.u) BOOST_TEST(std::abs(u) < 1e-9);
+  for(double cf : emb.conformal_factor) BOOST_TEST(std::abs(cf - 1) < 1e-6);
+  // lengths are kept: the layout is an isometry
+  for(std::size_t h = 0; h < t.number_of_halfedges(); ++h)
+    BOOST_TEST(std::abs((emb.uv[std::size_t(t.head(int(h)))] - emb.uv[std::size_t(t.tail(int(h)))]).norm() - t.length(int(h))) < 1e-9);
+}
+
+BOOST_AUTO_TEST_CASE(embedding_of_a_curved_patch_flattens_it_conformally)
+{
+  // a spherical cap: the flat metric must scale interior vertices, angle sums become 2 pi
+  const AC::Input_surface cap = grid_surface(16, 16, [](double u, double v) {
+    const double x = 2 * u - 1, y = 2 * v - 1;
+    return Eigen::Vector3d(x, y, std::sqrt(9 - x * x - y * y));
+  });
+  AC::Intrinsic_triangulation t(cap, AC::compute_metric_square_roots(cap, AC::Uniform_metric()));
+  AC::adjust_edge_lengths(t, cap);
+  const AC::Planar_embedding emb = AC::conformal_embedding(t, AC::parameters::conformal_tolerance(1e-10));
+  BOOST_TEST(emb.residual < 1e-10);
+  BOOST_TEST(emb.iterations > 0u);
+  double u_min = 0;
+  for(double u : emb.u) u_min = std::min(u_min, u);
+  BOOST_TEST(u_min < -1e-3);  // positive curvature inside shrinks the flat metric
+  // no inverted triangle in the layout
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const Eigen::Vector2d a = emb.uv[std::size_t(t.tail(int(3 * f)))], b = emb.uv[std::size_t(t.tail(int(3 * f + 1)))],
+                          c = emb.uv[std::size_t(t.tail(int(3 * f + 2)))];
+    BOOST_TEST(((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x()) > 0);
+  }
+  // the iteration bound is enforced and reports the residual
+  AC::Intrinsic_triangulation t2(cap, AC::compute_metric_square_roots(cap, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t2);
+  bool threw = false;
+  try {
+    AC::conformal_embedding(t2, AC::parameters::max_conformal_iterations(1u).conformal_tolerance(1e-15));
+  } catch(const AC::Convergence_failure& e) {
+    threw = std::string(e.what()).find("Newton") != std::string::npos && e.residual() > 0;
+  }
+  BOOST_TEST(threw);
+}
+
+// ---------------------------------------------------------------------- weighted CVT and dual
+
+BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)
+{
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const AC::Input_surface sq = AC::make_square_background(metric, 150);
+  AC::Intrinsic_triangulation t(sq, AC::compute_metric_square_roots(sq, metric));
+  for(std::size_t v = 0; v < sq.number_of_vertices(); ++v)  // the square's corners are kept as vertices
+    if((sq.points()[v].x() == 0 || sq.points()[v].x() == 1) && (sq.points()[v].y() == 0 || sq.points()[v].y() == 1))
+      t.set_corner(int(v), true);
+  AC::adjust_edge_lengths(t, sq);
+  const AC::Planar_embedding emb = AC::conformal_embedding(t);
+  AC::Planar_domain_traits domain(t, emb);
+
+  double adjusted_area = 0;
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f)
+    adjusted_area += AC::internal::heron_area(t.length(int(3 * f)), t.length(int(3 * f + 1)), t.length(int(3 * f + 2)));
+  std::vector<AC::Planar_domain_traits::Point> sites = domain.initial_sites(150, 7, adjusted_area);
+  BOOST_REQUIRE(sites.size() == 150u);
+  const std::size_t fixed = domain.number_of_fixed_sites();
+  BOOST_TEST(fixed >= 4u);
+  for(std::size_t i = fixed; i < sites.size(); ++i) BOOST_TEST(domain.contains(sites[i]));
+
+  // the cells partition the domain: their masses add up to the total mass, exactly
+  std::vector<AC::Planar_domain_traits::Cell> cells;
+  domain.integrate(sites, cells);
+  double mass = 0;
+  for(const auto& c : cells) {
+    BOOST_TEST(c.mass > 0);
+    mass += c.mass;
+  }
+  BOOST_TEST(std::abs(mass - domain.total_mass()) < 1e-9 * domain.total_mass());
+
+  const std::vector<AC::Planar_domain_traits::Point> start = sites;
+  std::vector<AC::Planar_domain_traits::Point> lloyd = sites;
+  const AC::Cvt_report rl = AC::weighted_centroidal_Voronoi_tessellation(
+      domain, lloyd, fixed, AC::parameters::number_of_iterations(30u).cvt_method(AC::Cvt_method::LLOYD));
+  for(std::size_t i = 1; i < rl.energy.size(); ++i) BOOST_TEST(rl.energy[i] <= rl.energy[i - 1] * (1 + 1e-12));
+  const AC::Cvt_report rb = AC::weighted_centroidal_Voronoi_tessellation(domain, sites, fixed,
+                                                                         AC::parameters::number_of_iterations(30u));
+  BOOST_TEST(rb.energy.back() < rb.energy.front());
+  BOOST_TEST(rb.energy.back() <= rl.energy.back() * 1.01);  // L-BFGS is at least as good as Lloyd
+  for(std::size_t i = 0; i < fixed; ++i) BOOST_TEST((sites[i] - start[i]).norm() == 0.0);  // boundary sites fixed
+  for(std::size_t i = fixed; i < sites.size(); ++i) BOOST_TEST(domain.contains(sites[i]));
+
+  // the dual: a single disk with every site a vertex, corners kept
+  const AC::Remeshed_surface out = AC::extract_dual_mesh(sq, t, domain, sites);
+  BOOST_TEST(out.points.size() == 150u);
+  std::set<std::pair<std::size_t, std::size_t>> edges;
+  double area = 0;
+  for(const auto& f : out.faces) {
+    for(int k = 0; k < 3; ++k) edges.insert(std::minmax(f[k], f[(k + 1) % 3]));
+    area += 0.5 * (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]).z();
+  }
+  BOOST_TEST(int(out.points.size()) - int(edges.size()) + int(out.faces.size()) == 1);
+  BOOST_TEST(std::abs(area - 1) < 1e-9);
+  for(std::size_t i = 0; i < out.points.size(); ++i)
+    BOOST_TEST((out.points[i] - out.surface_points[i].position).norm() < 1e-12);
+}
+
+// ----------------------------------------------------------------------------------- quality
+
+BOOST_AUTO_TEST_CASE(quality_is_measured_in_the_metric)
+{
+  const std::vector<std::array<std::size_t, 3>> tri{{{0, 1, 2}}};
+  // a right isosceles triangle in the Euclidean metric: G = 2 sqrt(3) S / (p h), angles 45, 45, 90
+  const std::vector<Eigen::Vector3d> right{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<Eigen::Matrix3d> I(3, Eigen::Matrix3d::Identity());
+  AC::Quality_report q = AC::compute_mesh_quality(right, tri, I);
+  const double expected = 2 * std::sqrt(3.0) * 0.5 / ((1 + std::sqrt(0.5)) * std::sqrt(2.0));  // p: half-perimeter
+  BOOST_TEST(std::abs(q.G_min - expected) < 1e-12);
+  BOOST_TEST(std::abs(q.theta_min - 45) < 1e-9);
+  BOOST_TEST(std::abs(q.theta_max - 90) < 1e-9);
+  BOOST_TEST(q.percent_below_30 == 0.0);
+  double total = 0;
+  for(double c : q.angle_histogram) total += c;
+  BOOST_TEST(total == 3.0);
+  BOOST_TEST(q.angle_histogram[9] == 2.0);   // [45, 50)
+  BOOST_TEST(q.angle_histogram[18] == 1.0);  // [90, 95)
+
+  // a triangle squashed by 2 along y is equilateral in the metric that stretches y by 2
+  const std::vector<Eigen::Vector3d> flat{{0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 4, 0}};
+  const std::vector<Eigen::Matrix3d> Q(3, Eigen::Vector3d(1, 2, 1).asDiagonal().toDenseMatrix());
+  q = AC::compute_mesh_quality(flat, tri, Q);
+  BOOST_TEST(std::abs(q.G_min - 1) < 1e-12);
+  BOOST_TEST(std::abs(q.theta_min - 60) < 1e-9);
+  BOOST_TEST(q.edge_length_stddev < 1e-12);
+  q = AC::compute_mesh_quality(flat, tri, I);
+  BOOST_TEST(q.G_min < 0.7);
+
+  BOOST_TEST(invalid_input_message([&] { AC::compute_mesh_quality(flat, tri, {}); }).find("one metric per vertex") !=
+             std::string::npos);
+}
