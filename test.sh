@@ -4,7 +4,9 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 ./scripts/install_dependencies.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# explicit ON: ./run.sh configures the same build/ with only the tool
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DANISO_CONFORMAL_BUILD_TESTS=ON -DANISO_CONFORMAL_BUILD_EXAMPLES=ON \
+      -DANISO_CONFORMAL_BUILD_TOOLS=ON -DANISO_CONFORMAL_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build build -j"$(nproc)"
 cd build
 ctest --output-on-failure -j1
