@@ -209,6 +209,26 @@ public:
     if(b.t == 1) return m_itri.head(b.halfedge);
     return -1;
   }
+  /*!
+   * where site `i` at `site` lies on the background: the face of the `Intrinsic_triangulation` and
+   * the barycentric coordinates in it (with respect to `face_vertices(face)`). A boundary site is placed
+   * on its boundary edge exactly (a coordinate is exactly 1 at a corner); a free site is located in the
+   * layout, within `1e-6` (relative barycentric) of the domain.
+   * \returns `false` if a free site lies outside the domain
+   */
+  bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const
+  {
+    if(i < m_sites_fixed) {
+      const Boundary_location& b = m_boundary_sites[i];
+      face = Intrinsic_triangulation::face(b.halfedge);
+      const int k = b.halfedge % 3;  // the halfedge goes from corner k to corner k + 1 of its face
+      bary = Eigen::Vector3d::Zero();
+      bary[k] = 1 - b.t;
+      bary[(k + 1) % 3] = b.t;
+      return true;
+    }
+    return locate(site, face, bary, 1e-6);
+  }
   /// moves `p` towards `target` as far as it stays in the domain (bisection); returns the new position
   Point move_towards(const Point& p, const Point& target) const
   {

@@ -7,7 +7,6 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
-#include <Aniso_conformal/Planar_domain_traits.h>
 #include <Aniso_conformal/Surface_point.h>
 
 #include <Eigen/Core>
@@ -32,16 +31,21 @@ struct Remeshed_surface {
 
 /*!
  * \ingroup PkgAnisoConformalStages
- * builds the output mesh (stage 5): the Delaunay dual of `sites` in `domain` (constrained to the
- * boundary polygon), each site mapped back onto `surface` through its barycentric coordinates in the
- * laid-out background triangle that contains it. Boundary sites are mapped along their boundary edge
- * (so they lie exactly on the input boundary, and corners are exactly input corners); interior points
- * of a curved surface are projected onto it (the background's flipped edges are chords).
+ * builds the output mesh (stage 5): the Delaunay dual of `sites` in `domain`
+ * (`domain.dual_triangles(sites)`), each site mapped back onto `surface` through its barycentric
+ * coordinates in the background triangle that contains it (`domain.background_location()`).
+ *
+ * A site that falls exactly on a background vertex that is an input vertex (a boundary corner) becomes
+ * that vertex. Fixed sites (on the boundary of a planar domain) and every site of a planar input keep
+ * their barycentric position exactly, so they lie on the input boundary; the other sites of a curved
+ * surface are projected onto it (the background's flipped edges are chords).
+ *
+ * \tparam DomainTraits a model of `ParametricDomainTraits` (`Planar_domain_traits`)
  * \throws Convergence_failure if a site cannot be located or the dual is not a valid triangulation
  */
-inline Remeshed_surface extract_dual_mesh(const Input_surface& surface, const Intrinsic_triangulation& itri,
-                                          const Planar_domain_traits& domain,
-                                          const std::vector<Planar_domain_traits::Point>& sites)
+template <typename DomainTraits>
+Remeshed_surface extract_dual_mesh(const Input_surface& surface, const Intrinsic_triangulation& itri,
+                                   const DomainTraits& domain, const std::vector<typename DomainTraits::Point>& sites)
 {
   Remeshed_surface out;
   out.faces = domain.dual_triangles(sites);
@@ -49,27 +53,21 @@ inline Remeshed_surface extract_dual_mesh(const Input_surface& surface, const In
   out.surface_points.resize(sites.size());
   const bool planar = surface.is_planar();
   for(std::size_t i = 0; i < sites.size(); ++i) {
-    Eigen::Vector3d x;
-    if(i < domain.number_of_fixed_sites()) {
-      const int v = domain.boundary_site_vertex(i);
-      const auto& b = domain.boundary_location(i);
-      x = v >= 0 ? itri.position(v)
-                 : Eigen::Vector3d((1 - b.t) * itri.position(itri.tail(b.halfedge)) + b.t * itri.position(itri.head(b.halfedge)));
-      if(v >= 0 && itri.input_vertex(v) >= 0) {
-        out.surface_points[i] = itri.point(v);
-      } else {
-        out.surface_points[i] = surface.project(x);
-        out.surface_points[i].position = x;
-      }
+    int f = -1;
+    Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+    if(!domain.background_location(i, sites[i], f, bary))
+      throw Convergence_failure("dual mesh: site " + std::to_string(i) + " lies outside the domain", 0);
+    const auto& c = itri.face_vertices(std::size_t(f));
+    int at_vertex = -1;
+    for(int k = 0; k < 3; ++k)
+      if(bary[k] == 1.0) at_vertex = c[k];
+    if(at_vertex >= 0 && itri.input_vertex(at_vertex) >= 0) {
+      out.surface_points[i] = itri.point(at_vertex);
     } else {
-      int f = -1;
-      Eigen::Vector3d bary = Eigen::Vector3d::Zero();
-      if(!domain.locate(sites[i], f, bary, 1e-6))
-        throw Convergence_failure("dual mesh: site " + std::to_string(i) + " lies outside the domain", 0);
-      const auto& c = itri.face_vertices(std::size_t(f));
-      x = bary[0] * itri.position(c[0]) + bary[1] * itri.position(c[1]) + bary[2] * itri.position(c[2]);
+      const Eigen::Vector3d x = bary[0] * itri.position(c[0]) + bary[1] * itri.position(c[1]) + bary[2] * itri.position(c[2]);
       out.surface_points[i] = surface.project(x);
-      if(planar) out.surface_points[i].position = x;  // exact in the plane; keeps z = 0 bit for bit
+      // exact in the plane (keeps z = 0 bit for bit) and on boundary edges, which are input edges
+      if(planar || i < domain.number_of_fixed_sites()) out.surface_points[i].position = x;
     }
     out.points[i] = out.surface_points[i].position;
     if(planar) out.points[i].z() = 0;
