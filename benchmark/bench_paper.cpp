@@ -138,7 +138,7 @@ int main(int argc, char** argv)
       cases.push_back(analytic_case("2D varying metric", "6", AC::make_analytic_metric_2(AC::Fig6_metric()), 1000, 10, 388.11, 5112));
       cases.push_back(analytic_case("2D circular metric", "7", AC::make_analytic_metric_2(AC::Circular_metric()), 4000, 34, 848.29, 25717));
       cases.push_back(image_case("colour image (chelsea, s = 0.1)", "8", data + "/images/photo_chelsea_323.png", 0.1, 3000, 218, 6405.80, 104329));
-      cases.push_back(image_case("CT image (ct_head, s = 0.5)", "9", data + "/images/ct_head_211.png", 0.5, 3000, 117, 4113.01, 44521));
+      cases.push_back(image_case("CT image (ct_head, s = 0.2; paper 0.5)", "9", data + "/images/ct_head_211.png", 0.2, 3000, 117, 4113.01, 44521));
     }
   } catch(const AC::Error& e) {
     std::cerr << "bench_paper: " << e.what() << "\n";

@@ -321,6 +321,21 @@ BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
                       "cannot write"));
 }
 
+BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
+{
+  // the whole CT slice: splits stall at the skull's edges (local length repair), the embedding needs
+  // intrinsic Delaunay flips, and the layout's bulging border must not leave flat boundary ears
+  const AC::IO::Image ct = AC::IO::read_image(data_dir + "/images/ct_head_211.png");
+  const AC::Image_metric metric(ct, 0.2);
+  AC::Remeshing_result r;
+  const auto out = AC::remesh(AC::make_image_background(ct), metric, r, AC::parameters::number_of_vertices(std::size_t(1500)));
+  BOOST_TEST(out.points.size() == 1500u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.conformal_flips > 0u);
+  BOOST_TEST(r.quality.theta_min > 5.0);
+  BOOST_TEST(r.quality.G_avg > 0.8);
+}
+
 // --------------------------------------------------------------------------- square background
 
 BOOST_AUTO_TEST_CASE(square_background_resolves_the_metric)

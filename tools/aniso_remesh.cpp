@@ -123,9 +123,11 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 q.theta_min, q.theta_avg, q.percent_below_30);
     std::printf("metric edge  normalised length stddev %.3f, min %.3f, max %.3f\n", q.edge_length_stddev,
                 q.edge_length_min, q.edge_length_max);
-    std::printf("stages       flips %zu, splits %zu, Newton %zu (residual %.2g), CVT %zu iterations (%s)\n",
-                result.adjustment.flips, result.adjustment.splits, result.conformal_iterations, result.conformal_residual,
-                result.cvt.iterations, o.cvt.c_str());
+    std::printf("stages       flips %zu, splits %zu, repaired %zu, Newton %zu (residual %.2g, %zu intrinsic flips), "
+                "CVT %zu iterations (%s)\n",
+                result.adjustment.flips, result.adjustment.splits, result.adjustment.repaired_triangles,
+                result.conformal_iterations, result.conformal_residual, result.conformal_flips, result.cvt.iterations,
+                o.cvt.c_str());
     std::printf("time         background %.3f s, total %.3f s (", background_seconds, background_seconds + result.total_seconds());
     for(int s = 0; s < AC::number_of_stages; ++s)
       std::printf("%s%s %.3f", s ? ", " : "", AC::stage_name(AC::Stage(s)), result.seconds[s]);

@@ -393,6 +393,36 @@ public:
       border.pop_front();
       if(f->info() == -1) flood(f, 1);
     }
+    // An "ear" (three consecutive boundary sites, the middle one not a corner) lies on one boundary
+    // edge chain of the input: flat or nearly so on the surface even when the layout bulges. Flip its
+    // inner edge when the quad it forms with the inside neighbour is convex.
+    if(nb > 3) {
+      std::vector<CDT::Face_handle> ears;
+      for(auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+        if(f->info() % 2 == 1) ears.push_back(f);
+      for(CDT::Face_handle f : ears) {
+        for(int k = 0; k < 3; ++k) {
+          const int tip = f->vertex(k)->info(), a = f->vertex(CDT::ccw(k))->info(), b = f->vertex(CDT::cw(k))->info();
+          if(tip < 0 || a < 0 || b < 0 || std::size_t(tip) >= nb || std::size_t(a) >= nb || std::size_t(b) >= nb) continue;
+          const std::size_t t = std::size_t(tip);
+          const bool consecutive = (std::size_t(a) == (t + 1) % nb && std::size_t(b) == (t + nb - 1) % nb) ||
+                                   (std::size_t(b) == (t + 1) % nb && std::size_t(a) == (t + nb - 1) % nb);
+          if(!consecutive) continue;
+          const int v = boundary_site_vertex(t);
+          if(v >= 0 && m_itri.is_corner(v)) continue;
+          CDT::Face_handle g = f->neighbor(k);
+          if(cdt.is_infinite(g) || g->info() % 2 != 1 || cdt.is_constrained(CDT::Edge(f, k))) continue;
+          const K::Point_2& p = f->vertex(k)->point();
+          const K::Point_2& q = g->vertex(g->index(f))->point();
+          const CGAL::Orientation oa = CGAL::orientation(p, q, f->vertex(CDT::ccw(k))->point());
+          const CGAL::Orientation ob = CGAL::orientation(p, q, f->vertex(CDT::cw(k))->point());
+          if(oa == CGAL::COLLINEAR || ob == CGAL::COLLINEAR || oa == ob) continue;  // not strictly convex
+          cdt.flip(f, k);
+          f->info() = g->info() = 1;
+          break;
+        }
+      }
+    }
     std::vector<std::array<std::size_t, 3>> tris;
     std::vector<char> used(sites.size(), 0);
     for(auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {

@@ -33,6 +33,7 @@ struct Remeshing_result {
   Edge_adjustment_report adjustment;               ///< flips and splits of stage 2
   std::size_t conformal_iterations = 0;            ///< Newton iterations of stage 3
   double conformal_residual = 0;                   ///< max angle-sum error at the end of stage 3 (radians)
+  std::size_t conformal_flips = 0;                 ///< intrinsic Delaunay flips made during stage 3
   double conformal_factor_min = 0;                 ///< smallest conformal factor
   double conformal_factor_max = 0;                 ///< largest conformal factor
   Cvt_report cvt;                                  ///< energies and iterations of stage 4

@@ -33,6 +33,11 @@ struct Edge_adjustment_report {
   std::size_t flips = 0;                     ///< metric-Delaunay flips
   std::size_t splits = 0;                    ///< longest-edge splits
   std::size_t rounds = 0;                    ///< flip-then-split rounds
+  /// the length added to every edge by the final mollification, relative to the median edge length
+  /// (0 if the splits sufficed)
+  double mollification = 0;
+  /// triangles repaired by changing an edge length locally when splits stalled
+  std::size_t repaired_triangles = 0;
 };
 
 namespace internal {
@@ -67,6 +72,68 @@ inline bool flip_keeps_orientation(const Intrinsic_triangulation& itri, int h)
   return m0.dot(ref) > 1e-10 * scale && m1.dot(ref) > 1e-10 * scale;
 }
 
+// Local repair of the few triangles that splits cannot fix: an invalid triangle's longest edge is
+// shortened to just below the sum of the other two when its other triangle stays valid, otherwise its two
+// shorter edges are lengthened; a few passes. Returns true if every triangle is valid afterwards.
+inline bool repair_lengths(Intrinsic_triangulation& itri, Edge_adjustment_report& report)
+{
+  const double shrink = 1 - 1e-4;
+  for(int pass = 0; pass < 10; ++pass) {
+    bool all_valid = true;
+    for(std::size_t f = 0; f < itri.number_of_faces(); ++f) {
+      if(face_is_valid(itri, f)) continue;
+      all_valid = false;
+      int k = int(3 * f);
+      for(int j = 1; j < 3; ++j)
+        if(itri.length(int(3 * f + j)) > itri.length(k)) k = int(3 * f + j);
+      const int i = Intrinsic_triangulation::next(k), j = Intrinsic_triangulation::prev(k);
+      const double target = (itri.length(i) + itri.length(j)) * shrink;
+      const int t = itri.twin(k);
+      bool other_ok = true;
+      if(t >= 0)
+        other_ok = satisfies_triangle_inequality(target, itri.length(Intrinsic_triangulation::next(t)),
+                                                 itri.length(Intrinsic_triangulation::prev(t)));
+      if(other_ok) {
+        itri.set_length(k, target);
+      } else {
+        const double grow = 0.5 * (itri.length(k) / shrink - itri.length(i) - itri.length(j));
+        itri.set_length(i, itri.length(i) + grow);
+        itri.set_length(j, itri.length(j) + grow);
+      }
+      ++report.repaired_triangles;
+    }
+    if(all_valid) return true;
+  }
+  for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
+    if(!face_is_valid(itri, f)) return false;
+  return true;
+}
+
+// Intrinsic mollification (Sharp, Soliman, Crane 2019): adds the same epsilon to every edge length,
+// the smallest that makes every triangle satisfy the strict triangle inequality. Accepted only when
+// epsilon is at most a tenth of the median edge length; report.mollification gets epsilon relative to
+// that median either way.
+inline bool mollify(Intrinsic_triangulation& itri, Edge_adjustment_report& report)
+{
+  std::vector<double> lengths;
+  double eps = 0;
+  for(std::size_t f = 0; f < itri.number_of_faces(); ++f) {
+    const double l[3] = {itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2))};
+    const double margin = 1e-6 * (l[0] + l[1] + l[2]);
+    for(int k = 0; k < 3; ++k) {
+      eps = std::max(eps, l[k] - l[(k + 1) % 3] - l[(k + 2) % 3] + margin);
+      lengths.push_back(l[k]);
+    }
+  }
+  std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
+  const double median = lengths[lengths.size() / 2];
+  report.mollification = eps / median;
+  if(!(report.mollification <= 0.1)) return false;
+  for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
+    if(itri.is_edge_representative(h)) itri.set_length(h, itri.length(h) + eps);
+  return true;
+}
+
 } // namespace internal
 
 /*!
@@ -82,9 +149,20 @@ inline bool flip_keeps_orientation(const Intrinsic_triangulation& itri, int h)
  *   - `max_adjustment_rounds` (unsigned, default 50): bound on flip-then-split rounds;
  *   - `visitor`: `on_iteration(Stage::EDGE_LENGTHS, round, bound, invalid_triangles)`.
  *
- * The total number of flips is bounded by 20 times the number of edges per round (a metric that varies
- * across a quad can make Lawson's algorithm cycle); flipping then stops for that round.
- * \throws Convergence_failure if invalid triangles remain after `max_adjustment_rounds` rounds
+ * When three rounds of splits in a row do not reduce the number of invalid triangles (a metric that
+ * jumps between neighbouring triangles, like the colour edges of an image), the remaining triangles are
+ * repaired locally: the longest edge of such a triangle is shortened to just below the sum of the other
+ * two when that keeps its other triangle valid, else the two others are lengthened
+ * (`Edge_adjustment_report::repaired_triangles`, a few passes). If triangles remain, intrinsic
+ * mollification (Sharp, Soliman, Crane 2019) lengthens every edge by the smallest `epsilon` that makes
+ * every triangle valid, accepted if `epsilon` is at most a tenth of the median edge length
+ * (`Edge_adjustment_report::mollification`).
+ *
+ * The first round examines every edge, later rounds only the edges around the vertices the splits
+ * inserted. The number of flips of a round is bounded by 20 times the number of edges it examines (a
+ * metric that varies across a quad can make Lawson's algorithm cycle); flipping then stops for that round.
+ * \throws Convergence_failure if invalid triangles remain after `max_adjustment_rounds` rounds, or when
+ *         the splits stall and mollification would need more than a tenth of the median edge length
  *         (the residual is their number): the metric varies too fast for the input's resolution.
  */
 template <typename NamedParameters = parameters::Default_named_parameters>
@@ -105,17 +183,32 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
     return n;
   };
   report.invalid_triangles_before = count_invalid();
+  std::vector<int> inserted;  // vertices inserted by the last round's splits
+  std::size_t best = std::size_t(-1), stalled = 0;  // progress of the splits
 
   for(report.rounds = 1;; ++report.rounds) {
     // 1. metric-Delaunay flips (Lawson's queue)
+    // every edge in the first round, then only the edges around the vertices the last splits inserted
+    // (Lawson's incremental insertion): elsewhere nothing changed
     std::deque<int> queue;
     std::vector<char> queued(itri.number_of_halfedges(), 0);
-    for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
-      if(itri.twin(h) >= 0 && itri.is_edge_representative(h)) {
-        queue.push_back(h);
-        queued[h] = 1;
+    auto enqueue = [&](int h) {
+      const int r = itri.is_edge_representative(h) ? h : itri.twin(h);
+      if(itri.twin(r) >= 0 && !queued[r]) {
+        queue.push_back(r);
+        queued[r] = 1;
       }
-    const std::size_t flip_budget = 20 * itri.number_of_halfedges() / 2 + 100;
+    };
+    if(report.rounds == 1) {
+      for(int h = 0; h < int(itri.number_of_halfedges()); ++h) enqueue(h);
+    } else {
+      for(int v : inserted)
+        for(int h : itri.outgoing_halfedges(v)) {
+          enqueue(h);
+          enqueue(Intrinsic_triangulation::next(h));
+        }
+    }
+    const std::size_t flip_budget = 20 * queue.size() + 100;
     std::size_t flips_this_round = 0;
     while(!queue.empty() && flips_this_round < flip_budget) {
       const int h = queue.front();
@@ -126,13 +219,8 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
       const int g = itri.flip(h);
       ++flips_this_round;
       for(int e : {Intrinsic_triangulation::next(g), Intrinsic_triangulation::prev(g),
-                   Intrinsic_triangulation::next(itri.twin(g)), Intrinsic_triangulation::prev(itri.twin(g))}) {
-        int r = itri.is_edge_representative(e) ? e : itri.twin(e);
-        if(itri.twin(r) >= 0 && !queued[r]) {
-          queue.push_back(r);
-          queued[r] = 1;
-        }
-      }
+                   Intrinsic_triangulation::next(itri.twin(g)), Intrinsic_triangulation::prev(itri.twin(g))})
+        enqueue(e);
     }
     report.flips += flips_this_round;
     compute_metric_edge_lengths(itri);
@@ -149,6 +237,20 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
     std::sort(to_split.begin(), to_split.end());
     to_split.erase(std::unique(to_split.begin(), to_split.end()), to_split.end());
     if(to_split.empty()) break;
+    if(to_split.size() < best) {
+      best = to_split.size();
+      stalled = 0;
+    } else if(++stalled >= 3) {
+      // splitting no longer helps (a metric that jumps between neighbouring triangles): repair the few
+      // triangles left by shortening or lengthening their edges, or mollify
+      if(internal::repair_lengths(itri, report) || internal::mollify(itri, report)) break;
+      throw Convergence_failure("edge-length adjustment: " + std::to_string(to_split.size()) +
+                                    " triangles still violate the triangle inequality and splitting no longer helps"
+                                    " (mollification would lengthen every edge by " +
+                                    std::to_string(report.mollification) +
+                                    " of the median edge length); smooth the metric or refine the input",
+                                double(to_split.size()));
+    }
     if(report.rounds >= max_rounds)
       throw Convergence_failure("edge-length adjustment: " + std::to_string(to_split.size()) +
                                     " triangles still violate the triangle inequality after " +
@@ -156,6 +258,7 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
                                     " rounds of flips and splits; smooth the metric or refine the input",
                                 double(to_split.size()));
     // split by vertex pairs: earlier splits renumber halfedges of the faces they touch
+    inserted.clear();
     std::vector<std::pair<int, int>> pairs;
     for(int h : to_split) pairs.emplace_back(itri.tail(h), itri.head(h));
     for(const auto& p : pairs) {
@@ -166,7 +269,7 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
       // already; interior midpoints of flipped edges are chords and get projected
       Surface_point sp = surface.project(mid);
       if(itri.twin(h) < 0) sp.position = mid;
-      itri.split(h, sp, 0.5 * (itri.Q(p.first) + itri.Q(p.second)));
+      inserted.push_back(itri.split(h, sp, 0.5 * (itri.Q(p.first) + itri.Q(p.second))));
       ++report.splits;
     }
     compute_metric_edge_lengths(itri);

@@ -35,7 +35,8 @@ struct Planar_embedding {
   std::vector<double> conformal_factor;    ///< `cf(v)`: adjusted area around v over domain area around v (paper eq. 6)
   std::size_t iterations = 0;              ///< Newton iterations
   double residual = 0;                     ///< max |2 pi - angle sum| over interior vertices at the end
-  std::size_t degenerate_triangles = 0;    ///< triangles that had to be treated as flat during the solve
+  std::size_t degenerate_triangles = 0;    ///< triangles treated as flat at the end of the solve (0 normally)
+  std::size_t flips = 0;                   ///< intrinsic Delaunay flips made during the solve
 };
 
 namespace internal {
@@ -77,7 +78,14 @@ inline std::array<double, 3> corner_angles(const std::array<double, 3>& l, bool&
  * Hessian (Eigen's sparse Cholesky) and a backtracking line search; then laid out by unfolding
  * triangles breadth-first, and the conformal factor computed per vertex (paper eq. 6).
  *
- * \param itri a disk-topology triangulation with valid edge lengths (after `adjust_edge_lengths()`)
+ * Before every evaluation the triangulation is made intrinsically Delaunay for the scaled lengths
+ * (Gillespie, Springborn and Crane 2021): interior edges are flipped, the new edge's length given by
+ * Ptolemy's relation, which is invariant under the scaling. This keeps every triangle valid during the
+ * solve, so metrics the paper had to tame (strong images, high stretch) embed without inverted
+ * triangles. `itri` is modified by these flips (its vertices, boundary and corners are not).
+ *
+ * \param itri a disk-topology triangulation with valid edge lengths (after `adjust_edge_lengths()`);
+ *        interior edges may be flipped
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
  *        (default `1e-9`, on the max angle-sum error in radians), `visitor`
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`).
@@ -86,7 +94,7 @@ inline std::array<double, 3> corner_angles(const std::array<double, 3>& l, bool&
  *         factorisation fails, or if the layout has inverted triangles (with the residual reached)
  */
 template <typename NamedParameters = parameters::Default_named_parameters>
-Planar_embedding conformal_embedding(const Intrinsic_triangulation& itri,
+Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
                                      const NamedParameters& np = parameters::default_values())
 {
   using CGAL::parameters::choose_parameter;
@@ -107,8 +115,58 @@ Planar_embedding conformal_embedding(const Intrinsic_triangulation& itri,
   emb.u.assign(nv, 0.0);
   std::vector<double> angle_sum(nv);
   std::vector<Eigen::Triplet<double>> triplets;
-  // Evaluates angle sums and (optionally) the cotangent Laplacian at scales u.
+  // Intrinsic Delaunay flips for the lengths scaled by u (Gillespie, Springborn, Crane 2021): the new
+  // edge gets its length by Ptolemy's relation, which commutes with the scaling, so the flipped
+  // triangulation describes the same discrete conformal class and the solve stays well posed (no
+  // triangle degenerates) for any input lengths. Returns the number of flips.
+  std::size_t flips_total = 0;
+  auto scaled = [&](int h, const std::vector<double>& u) {
+    return itri.length(h) * std::exp(0.5 * (u[itri.tail(h)] + u[itri.head(h)]));
+  };
+  auto opposite_angle = [&](int h, const std::vector<double>& u) {  // angle at the corner facing h
+    const double o = scaled(h, u), a = scaled(Intrinsic_triangulation::next(h), u), b = scaled(Intrinsic_triangulation::prev(h), u);
+    if(o >= a + b) return 3.14159265358979323846;
+    if(a >= o + b || b >= o + a) return 0.0;
+    return std::acos(std::max(-1.0, std::min(1.0, (a * a + b * b - o * o) / (2 * a * b))));
+  };
+  auto make_delaunay = [&](const std::vector<double>& u) {
+    std::size_t flips = 0;
+    const int nh = int(itri.number_of_halfedges());
+    std::deque<int> queue;
+    std::vector<char> queued(std::size_t(nh), 0);
+    auto enqueue = [&](int h) {
+      const int r = itri.is_edge_representative(h) ? h : itri.twin(h);
+      if(itri.twin(r) >= 0 && !queued[std::size_t(r)]) { queued[std::size_t(r)] = 1; queue.push_back(r); }
+    };
+    for(int h = 0; h < nh; ++h) enqueue(h);
+    const std::size_t budget = 50 * std::size_t(nh) + 100;  // Delaunay flips terminate; this only guards
+    while(!queue.empty() && flips < budget) {
+      const int h = queue.front();
+      queue.pop_front();
+      queued[std::size_t(h)] = 0;
+      const int t = itri.twin(h);
+      if(t < 0 || opposite_angle(h, u) + opposite_angle(t, u) <= 3.14159265358979323846 + 1e-10) continue;
+      const int c = itri.opposite_vertex(h), d = itri.opposite_vertex(t);
+      if(c == d || itri.find_halfedge(c, d) >= 0) continue;  // would create a double edge
+      const double l_ab = itri.length(h), l_bc = itri.length(Intrinsic_triangulation::next(h)),
+                   l_ca = itri.length(Intrinsic_triangulation::prev(h)), l_ad = itri.length(Intrinsic_triangulation::next(t)),
+                   l_db = itri.length(Intrinsic_triangulation::prev(t));
+      const int g = itri.flip(h);
+      itri.set_length(g, (l_ad * l_bc + l_db * l_ca) / l_ab);  // Ptolemy on the quad a, d, b, c
+      ++flips;
+      for(int e : {Intrinsic_triangulation::next(g), Intrinsic_triangulation::prev(g),
+                   Intrinsic_triangulation::next(itri.twin(g)), Intrinsic_triangulation::prev(itri.twin(g))})
+        enqueue(e);
+    }
+    flips_total += flips;
+    return flips;
+  };
+
+  // Evaluates angle sums and (optionally) the cotangent Laplacian at scales u, after making the
+  // triangulation Delaunay for them.
+  bool connectivity_changed = false;
   auto evaluate = [&](const std::vector<double>& u, bool with_hessian, std::size_t& degenerate) {
+    if(make_delaunay(u) > 0) connectivity_changed = true;
     std::fill(angle_sum.begin(), angle_sum.end(), 0.0);
     triplets.clear();
     degenerate = 0;
@@ -150,9 +208,10 @@ Planar_embedding conformal_embedding(const Intrinsic_triangulation& itri,
     H.setFromTriplets(triplets.begin(), triplets.end());
     // a tiny diagonal shift keeps the factorisation definite where degenerate triangles zero a row
     for(int i = 0; i < n; ++i) H.coeffRef(i, i) += 1e-12;
-    if(!analysed) {
+    if(!analysed || connectivity_changed) {  // flips change the sparsity pattern
       solver.analyzePattern(H);
       analysed = true;
+      connectivity_changed = false;
     }
     solver.factorize(H);
     if(solver.info() != Eigen::Success)
@@ -180,6 +239,7 @@ Planar_embedding conformal_embedding(const Intrinsic_triangulation& itri,
   emb.iterations = it;
   emb.residual = residual;
   emb.degenerate_triangles = degenerate;
+  emb.flips = flips_total;
   if(residual > tol)
     throw Convergence_failure("conformal embedding: Newton's method reached angle-sum error " + std::to_string(residual) +
                                   " after " + std::to_string(it) + " iterations (tolerance " + std::to_string(tol) + ")",

@@ -152,6 +152,7 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   Planar_embedding emb = conformal_embedding(itri, np);
   result.conformal_iterations = emb.iterations;
   result.conformal_residual = emb.residual;
+  result.conformal_flips = emb.flips;
   result.conformal_factor_min = *std::min_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
   result.conformal_factor_max = *std::max_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);

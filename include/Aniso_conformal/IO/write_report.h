@@ -79,9 +79,11 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
      << ", \"normalized_max\": " << json_number(q.edge_length_max) << "}},\n";
   os << "  \"edge_adjustment\": {\"invalid_triangles_before\": " << r.adjustment.invalid_triangles_before
      << ", \"flips\": " << r.adjustment.flips << ", \"splits\": " << r.adjustment.splits
-     << ", \"rounds\": " << r.adjustment.rounds << "},\n";
+     << ", \"rounds\": " << r.adjustment.rounds
+     << ", \"repaired_triangles\": " << r.adjustment.repaired_triangles
+     << ", \"mollification\": " << json_number(r.adjustment.mollification) << "},\n";
   os << "  \"conformal_embedding\": {\"newton_iterations\": " << r.conformal_iterations
-     << ", \"residual\": " << json_number(r.conformal_residual)
+     << ", \"residual\": " << json_number(r.conformal_residual) << ", \"intrinsic_flips\": " << r.conformal_flips
      << ", \"conformal_factor_min\": " << json_number(r.conformal_factor_min)
      << ", \"conformal_factor_max\": " << json_number(r.conformal_factor_max) << "},\n";
   os << "  \"cvt\": {\"method\": \"" << (r.cvt.method == Cvt_method::LLOYD ? "lloyd" : "lbfgs")

@@ -1,0 +1,28 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The paper's Fig. 7: the unit square with a circular field M = R^T diag(Stretch^2, 1) R, Stretch in
+// [1, 10] (defined in Paper_metrics.h: stretched along the circles around the centre), 4000 vertices.
+// Usage: fig7_circular [output_folder [number_of_vertices]]
+
+#include "figure_common.h"
+
+#include <Aniso_conformal/Analytic_metric_2.h>
+#include <Aniso_conformal/Paper_metrics.h>
+#include <Aniso_conformal/make_square_background.h>
+
+#include <iostream>
+
+int main(int argc, char** argv)
+{
+  namespace AC = Aniso_conformal;
+  const figure::Arguments a(argc, argv, 4000);
+  try {
+    const auto metric = AC::make_analytic_metric_2(AC::Circular_metric());
+    const AC::Input_surface square = AC::make_square_background(metric, a.vertices);
+    return figure::reproduce("fig7", "Fig. 7, circular field", square, metric, a, true);
+  } catch(const AC::Error& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  }
+}
