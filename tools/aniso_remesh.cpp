@@ -147,7 +147,7 @@ int main_impl(int argc, char** argv)
   auto since = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   if(!o.image.empty()) {
     const AC::IO::Image img = AC::IO::read_image(o.image);
-    const double s = o.anisotropy > 0 ? o.anisotropy : (img.channels == 1 ? 0.5 : 0.1);
+    const double s = o.anisotropy > 0 ? o.anisotropy : (img.channels == 1 ? 0.2 : 0.1);  // grey: see the manual, Fig. 9
     const AC::Image_metric metric(img, s);
     const AC::Input_surface bg = AC::make_image_background(img);
     return run(o, bg, metric, since(), o.image);

@@ -25,7 +25,7 @@ struct Options {
   double stretch_max = 10;
   int smoothing_iterations = 10;
   int smoothing_rings = 2;
-  double anisotropy = -1;   // image only; default 0.1 colour, 0.5 grey
+  double anisotropy = -1;   // image only; default 0.1 colour, 0.2 grey
   // remeshing
   long long vertices = -1;
   long long iterations = 100;
@@ -53,7 +53,7 @@ inline const char* usage()
          "  --stretch-max R           curvature metric: bound on the stretch ratio (default 10)\n"
          "  --smoothing-iterations K  curvature metric: smoothing rounds (default 10)\n"
          "  --smoothing-rings R       curvature metric: neighbourhood rings of the smoothing (default 2)\n"
-         "  --anisotropy S            image metric: colour weight s of the paper's eq. 9 (default 0.1 colour, 0.5 grey)\n"
+         "  --anisotropy S            image metric: colour weight s of the paper's eq. 9 (default 0.1 colour, 0.2 grey)\n"
          "remeshing:\n"
          "  --vertices N              number of output vertices (required)\n"
          "  --iterations K            CVT iterations (default 100)\n"

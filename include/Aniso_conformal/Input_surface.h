@@ -59,6 +59,7 @@ public:
   /// \name Creation
   /// @{
 
+
   /// builds the surface from a polygon soup of triangles (vertex positions, faces as index triples)
   Input_surface(std::vector<Eigen::Vector3d> points, std::vector<Face> faces)
     : m_points(std::move(points)), m_faces(std::move(faces))
@@ -138,6 +139,7 @@ public:
 
   /// \name Queries
   /// @{
+
   /// the point of face `f` with barycentric coordinates `b`
   Surface_point point_in_face(std::size_t f, const Eigen::Vector3d& b) const
   {

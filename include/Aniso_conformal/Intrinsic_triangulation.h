@@ -36,6 +36,7 @@ class Intrinsic_triangulation {
 public:
   /// \name Creation
   /// @{
+
   /// copies the connectivity and positions of `surface`; `Q[i]` is the metric square root at input vertex `i`
   Intrinsic_triangulation(const Input_surface& surface, std::vector<Eigen::Matrix3d> Q) : m_Q(std::move(Q))
   {
@@ -237,6 +238,7 @@ public:
 
   /// \name Checks
   /// @{
+
   /// throws `std::logic_error` if an invariant is broken (twins, orientation, vertex halfedges, lengths if `with_lengths`)
   void validate(bool with_lengths = false) const
   {

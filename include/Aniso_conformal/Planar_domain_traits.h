@@ -67,6 +67,7 @@ public:
 
   /// \name Creation
   /// @{
+
   /// lays out the background of `itri` with the embedding `emb`; `threads` workers integrate (0 = hardware)
   Planar_domain_traits(const Intrinsic_triangulation& itri, const Planar_embedding& emb, unsigned threads = 0)
     : m_itri(itri)
@@ -108,6 +109,7 @@ public:
 
   /// \name Domain
   /// @{
+
   /// integral of the density over the domain
   double total_mass() const { return m_total_mass; }
   /// area of the domain
@@ -244,6 +246,7 @@ public:
 
   /// \name Integration
   /// @{
+
   /// computes mass, centroid and energy of the restricted Voronoi cell of every site
   void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const
   {

@@ -12,12 +12,14 @@
 
 namespace Aniso_conformal {
 
-/// tags of the named parameters owned by this library
+#ifndef DOXYGEN_RUNNING
+// tags of the named parameters owned by this library
 namespace internal_np {
 #define ANISO_CONFORMAL_ADD_NAMED_PARAMETER(X, Y, Z) enum X { Y };
 #include <Aniso_conformal/internal/parameters_interface.h>
 #undef ANISO_CONFORMAL_ADD_NAMED_PARAMETER
 } // namespace internal_np
+#endif
 
 /*!
  * \ingroup PkgAnisoConformalParameters

@@ -202,7 +202,12 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
  * \tparam TriangleMesh a model of `FaceListGraph` with a vertex point map
  * \tparam AnisotropicMetric a model of `AnisotropicMetric` indexed by the vertex index map of `np`
  * \tparam OutputMesh a model of `MutableFaceGraph` with an internal vertex point map
+ * \param tmesh the input mesh (never modified)
+ * \param metric the metric, evaluated through `Surface_point`s whose vertex indices are those of the
+ *        vertex index map of `np`
+ * \param out_mesh receives the output (cleared and written only on success)
  * \param np as for the other overload, plus `vertex_point_map` and `vertex_index_map` of `tmesh`
+ * \returns the diagnostics (`Remeshing_result`)
  */
 template <typename TriangleMesh, typename AnisotropicMetric, typename OutputMesh,
           typename NamedParameters = parameters::Default_named_parameters>
