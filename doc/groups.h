@@ -1,50 +1,106 @@
 // Copyright (c) 2026 Aniso_conformal developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The groups of the reference manual (Doxygen only; not a header to include).
+//
+// The groups of the reference manual (read by Doxygen only; not a header to include).
 
-/// \defgroup PkgAnisoConformalRef Reference
-/// Everything a user of Aniso_conformal includes, grouped by pipeline stage.
+/*!
+ * \defgroup PkgAnisoConformalRef Reference
+ * Everything a user of Aniso_conformal includes, grouped by role. The main page (the user manual)
+ * explains the method; each entity below names the paper section or equation it implements.
+ */
 
-/// \defgroup PkgAnisoConformalMain Entry points
-/// \ingroup PkgAnisoConformalRef
-/// `remesh()` on an `Input_surface` or on any BGL triangle mesh, and what it returns.
+/*!
+ * \defgroup PkgAnisoConformalMain Entry points
+ * \ingroup PkgAnisoConformalRef
+ * `remesh()` on an `Input_surface` or on any BGL triangle mesh, the validated input copy, and the
+ * diagnostics it returns.
+ */
 
-/// \defgroup PkgAnisoConformalStages Pipeline stages
-/// \ingroup PkgAnisoConformalRef
-/// Each stage callable on its own: metric square roots and edge lengths, edge-length adjustment,
-/// conformal embedding, weighted CVT, dual mesh; `remesh()` only composes them.
+/*!
+ * \defgroup PkgAnisoConformalStages Pipeline stages
+ * \ingroup PkgAnisoConformalRef
+ * Each stage callable on its own: metric square roots and edge lengths, edge-length adjustment,
+ * conformal embedding, weighted CVT and dual mesh, with their reports; `remesh()` only composes them.
+ */
 
-/// \defgroup PkgAnisoConformalMetrics Metrics
-/// \ingroup PkgAnisoConformalRef
-/// Models of `AnisotropicMetric`: tensor fields, analytic 2D fields (the paper's Fig. 6 and 7),
-/// curvature (paper eq. 4), images (paper eq. 9), uniform.
+/*!
+ * \defgroup PkgAnisoConformalMetrics Metrics
+ * \ingroup PkgAnisoConformalRef
+ * Models of `AnisotropicMetric`: tensor fields, analytic 2D fields (with the fields of the paper's
+ * Fig.\ 6 and 7), curvature (paper eq.\ 4), images (paper eq.\ 9) and the uniform metric, and the
+ * `Surface_point` at which they are evaluated.
+ */
 
-/// \defgroup PkgAnisoConformalDomains Domains and backgrounds
-/// \ingroup PkgAnisoConformalRef
-/// The input surface, the parametric domain traits (models of `ParametricDomainTraits`) and the
-/// builders of background triangulations for 2D domains and images.
+/*!
+ * \defgroup PkgAnisoConformalDomains Domains and backgrounds
+ * \ingroup PkgAnisoConformalRef
+ * Models of `ParametricDomainTraits` (the plane, for disks) and the builders of background
+ * triangulations for 2D domains and images.
+ */
 
-/// \defgroup PkgAnisoConformalQuality Quality
-/// \ingroup PkgAnisoConformalRef
-/// Quality measured in the metric (paper 3.6): G, angles, histogram, metric edge lengths.
+/*!
+ * \defgroup PkgAnisoConformalQuality Quality
+ * \ingroup PkgAnisoConformalRef
+ * Quality measured in the metric (paper section 3.6, after Frey and Borouchaki): `G`, angles, angle
+ * histogram and metric edge lengths.
+ */
 
-/// \defgroup PkgAnisoConformalVisitors Visitors
-/// \ingroup PkgAnisoConformalRef
-/// Progress reporting and cancellation (models of `AnisoConformalVisitor`).
+/*!
+ * \defgroup PkgAnisoConformalVisitors Visitors
+ * \ingroup PkgAnisoConformalRef
+ * Progress reporting and cancellation: the stages, and the do-nothing model of `AnisoConformalVisitor`.
+ */
 
-/// \defgroup PkgAnisoConformalParameters Named parameters
-/// \ingroup PkgAnisoConformalRef
-/// The optional arguments of every function, `Aniso_conformal::parameters::`.
+/*!
+ * \defgroup PkgAnisoConformalParameters Named parameters
+ * \ingroup PkgAnisoConformalRef
+ * The optional arguments of the functions, in CGAL's style:
+ * `Aniso_conformal::parameters::number_of_vertices(1000).number_of_iterations(100).random_seed(0)`.
+ *
+ * A chain must start with one of the functions of `Aniso_conformal::parameters` (CGAL 5.5 has no
+ * `combine()`, so a pack started with a `CGAL::parameters` function cannot be extended with ours).
+ *
+ * | parameter | default | used by |
+ * |---|---|---|
+ * | `number_of_vertices` | required | `remesh()`: the exact number of output vertices |
+ * | `number_of_iterations` | 100 | CVT iterations |
+ * | `cvt_method` | `Cvt_method::LBFGS` | the CVT optimiser |
+ * | `random_seed` | 0 | initial sites; the same seed gives the same output bit for bit |
+ * | `corner_angle` | 30 | boundary turning angle (degrees) above which an input vertex is kept as a corner |
+ * | `max_adjustment_rounds` | 50 | bound on the flip-then-split rounds of `adjust_edge_lengths()` |
+ * | `max_conformal_iterations` | 100 | bound on the Newton steps of `conformal_embedding()` |
+ * | `conformal_tolerance` | 1e-9 | angle-sum error (radians) Newton's method must reach |
+ * | `number_of_threads` | 0 (all cores) | workers of the CVT integration |
+ * | `visitor` | `Default_visitor` | a model of `AnisoConformalVisitor`; pass `std::ref(v)` to keep its state |
+ * | `vertex_point_map`, `vertex_index_map` | the mesh's internal maps | the input BGL mesh of `remesh()` |
+ */
 
-/// \defgroup PkgAnisoConformalErrors Errors
-/// \ingroup PkgAnisoConformalRef
-/// The exceptions the library throws; every message names the problem (file, line, vertex, face).
+/*!
+ * \defgroup PkgAnisoConformalErrors Errors
+ * \ingroup PkgAnisoConformalRef
+ * The exceptions the library throws, all derived from `Aniso_conformal::Error` (a
+ * `std::runtime_error`); every message names the problem and where (file, line, vertex, face).
+ */
 
-/// \defgroup PkgAnisoConformalIO Input and output
-/// \ingroup PkgAnisoConformalRef
-/// Readers of meshes, metric files and images (each failure an `Invalid_input` naming the file), and
-/// writers of meshes, JSON reports and SVG pictures.
+/*!
+ * \defgroup PkgAnisoConformalIO Input and output
+ * \ingroup PkgAnisoConformalRef
+ * Readers of meshes, metric files and images (each failure an `Invalid_input` naming the file), and
+ * writers of meshes, JSON reports and SVG pictures.
+ */
 
-/// \defgroup PkgAnisoConformalConcepts Concepts
-/// \ingroup PkgAnisoConformalRef
-/// What a user type must provide to plug into the pipeline.
+/*!
+ * \defgroup PkgAnisoConformalConcepts Concepts
+ * \ingroup PkgAnisoConformalRef
+ * What a user type must provide to plug into the pipeline: a metric, a parametric domain, a visitor.
+ */
+
+/*!
+ * \namespace Aniso_conformal
+ * The namespace of the library: `remesh()`, its stages, the metrics, domains, reports and exceptions.
+ */
+
+/*!
+ * \namespace Aniso_conformal::IO
+ * Readers and writers: triangle meshes, metric files, images, JSON reports and SVG pictures.
+ */

@@ -1,45 +1,96 @@
 // Copyright (c) 2026 Aniso_conformal developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Concept documentation (Doxygen only).
+//
+// Concept documentation (read by Doxygen only; not a header to include).
 
 /*!
  * \ingroup PkgAnisoConformalConcepts
+ * The canonical domain a surface is conformally embedded in, with the background triangulation laid
+ * out in it and the CVT density `rho = cf^2` over it.
+ *
  * \cgalConcept
  *
- * The canonical domain a surface is conformally embedded in (the plane for a disk; the sphere, the flat
- * torus and the hyperbolic disk for closed surfaces), with the laid-out background triangulation and
- * the CVT density `rho = cf^2` over it. The generic stages use only what this concept lists:
- * `weighted_centroidal_Voronoi_tessellation()` (integration, domain membership, Lloyd moves) and
- * `extract_dual_mesh()` (the dual triangles and where each site lies on the background).
+ * The domain is the plane for a disk; the sphere, the flat torus and the hyperbolic disk are the
+ * domains of closed surfaces (future work). The generic stages use only the members listed here:
+ * - `weighted_centroidal_Voronoi_tessellation()` (stage 4) calls `integrate()` for the energy, masses
+ *   and centroids, `contains()` to reject L-BFGS steps that leave the domain, and `move_towards()` for
+ *   Lloyd steps; it optimises the `Point`s coordinate by coordinate;
+ * - `extract_dual_mesh()` (stage 5) calls `dual_triangles()` for the output connectivity,
+ *   `background_location()` to map every site back onto the input through the background
+ *   `Intrinsic_triangulation`, and `number_of_fixed_sites()`.
+ *
+ * How a model is built and how it places the initial sites is its own business (`remesh()` uses
+ * `Planar_domain_traits::initial_sites()`).
  *
  * Sites are ordered: the first `number_of_fixed_sites()` stay where they are (the boundary sites of a
- * planar domain; 0 for closed domains).
+ * planar domain; 0 for a closed domain); the CVT receives that number as its argument
+ * `number_of_fixed_sites`.
  *
  * \cgalHasModel `Aniso_conformal::Planar_domain_traits`
  */
 class ParametricDomainTraits {
 public:
-  /// a point of the domain: an `Eigen` fixed-size column vector (`Eigen::Vector2d` for the plane);
-  /// its `RowsAtCompileTime` is the number of coordinates the CVT optimises per site
+  /// \name Types
+  /// @{
+
+  /*!
+   * a point of the domain: a fixed-size Eigen column vector of `double` (`Eigen::Vector2d` for the
+   * plane). `Point::RowsAtCompileTime` is the number of coordinates the CVT optimises per site.
+   */
   typedef unspecified_type Point;
-  /// integrals of the density over one Voronoi cell restricted to the domain
+
+  /*!
+   * the integrals of the density over one Voronoi cell restricted to the domain. Default
+   * constructible and copyable, with (at least) these public data members.
+   */
   struct Cell {
-    double mass;      ///< integral of `rho`
-    Point centroid;   ///< (integral of `rho y`) / mass, or the site when the mass is 0
-    double energy;    ///< integral of `rho |y - site|^2`
+    double mass;     ///< integral of `rho` over the cell
+    Point centroid;  ///< (integral of `rho y`) / `mass`, or the site itself when the mass is 0
+    double energy;   ///< integral of `rho |y - site|^2` over the cell
   };
-  /// computes the restricted Voronoi cell of every site (one `Cell` per site, same order), exactly
+
+  /// @}
+
+  /// \name Integration and moves (stage 4)
+  /// @{
+
+  /*!
+   * computes the restricted Voronoi cell of every site: resizes `cells` to `sites.size()` and fills
+   * `cells[i]` for `sites[i]`. The CVT energy is the sum of the cells' `energy`, its gradient with
+   * respect to site `i` is `2 mass_i (site_i - centroid_i)`, so the integrals must be exact (or at
+   * least consistent) for L-BFGS to converge.
+   */
   void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const;
-  /// `true` if `p` is in the domain
+
+  /// returns `true` if `p` is in the domain
   bool contains(const Point& p) const;
-  /// moves `p` towards `target` as far as the domain allows (Lloyd steps and rejected L-BFGS steps)
+
+  /// returns `p` moved towards `target` as far as the domain allows (`target` itself if it is inside)
   Point move_towards(const Point& p, const Point& target) const;
-  /// the number of leading sites that do not move
+
+  /// @}
+
+  /// \name Dual mesh (stage 5)
+  /// @{
+
+  /// returns the number of leading sites that do not move
   std::size_t number_of_fixed_sites() const;
-  /// the triangles of the Delaunay dual of `sites` in the domain, as indices into `sites`, oriented
-  /// like the input; throws `Aniso_conformal::Convergence_failure` if they do not form a valid triangulation
+
+  /*!
+   * returns the triangles of the Delaunay dual of `sites` in the domain (with the domain's boundary or
+   * periodicity), as index triples into `sites`, oriented like the input; every site must be a vertex
+   * of the result.
+   * \throws Aniso_conformal::Convergence_failure if the triangles do not form a valid triangulation
+   */
   std::vector<std::array<std::size_t, 3>> dual_triangles(const std::vector<Point>& sites) const;
-  /// the face of the background `Intrinsic_triangulation` that contains site `i` at `site` and the
-  /// barycentric coordinates in it (with respect to its `face_vertices()`); `false` if it is outside
+
+  /*!
+   * finds where site `i`, at `site`, lies on the background: sets `face` to the face of the background
+   * `Intrinsic_triangulation` that contains it and `barycentric` to its barycentric coordinates with
+   * respect to that face's `face_vertices()`. A coordinate exactly 1 means the site is that vertex.
+   * \returns `false` if the site lies outside the domain
+   */
   bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& barycentric) const;
+
+  /// @}
 };

@@ -16,9 +16,10 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMetrics
- * \cgalModels `AnisotropicMetric`
  * a metric on a planar domain (z = 0) given by a functor `Eigen::Matrix2d f(double x, double y)`
  * returning a symmetric positive-definite 2x2 tensor. The 3x3 tensor has zero z-parts.
+ *
+ * \cgalModels `AnisotropicMetric`
  */
 template <typename Functor>
 class Analytic_metric_2 {

@@ -36,8 +36,7 @@ struct Curvature_metric_options {
 
 /*!
  * \ingroup PkgAnisoConformalMetrics
- * \cgalModels `AnisotropicMetric`
- * the curvature metric of the paper's eq. 4, with the cleanups of DESIGN.md 3:
+ * the curvature metric of the paper's eq.\ 4, with the cleanups of DESIGN.md 3:
  * `M = s_min^2 d_min d_min^T + s_max^2 d_max d_max^T` with `s = sqrt(|kappa|)` along each principal
  * direction (zero along the normal), so edges are short across strong curvature.
  *
@@ -52,6 +51,8 @@ struct Curvature_metric_options {
  *    tangent plane (the rotation taking its normal to the vertex's), re-projected, and step 2 is applied
  *    again. The result is scaled so that the median `s_big` is 1 (only the shape matters).
  * \throws Invalid_input for options out of range
+ *
+ * \cgalModels `AnisotropicMetric`
  */
 class Curvature_metric {
 public:

@@ -14,9 +14,10 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalVisitors
- * \cgalModels `AnisoConformalVisitor`
  * a visitor whose callbacks do nothing; derive from it and override what you need.
  * The visitor is copied by `remesh()`: pass `std::ref(v)` to keep state or a cancellation flag.
+ *
+ * \cgalModels `AnisoConformalVisitor`
  */
 struct Default_visitor {
   /// called when stage `s` starts

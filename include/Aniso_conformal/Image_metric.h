@@ -21,8 +21,7 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMetrics
- * \cgalModels `AnisotropicMetric`
- * the metric of the paper's image meshing (eq. 9): a pixel `x` is embedded as
+ * the metric of the paper's image meshing (eq.\ 9): a pixel `x` is embedded as
  * `phi(x) = [x, y, s r, s g, s b]` (or `[x, y, s i]` for grey images), and lengths are measured in that
  * space, which is the pull-back metric `M = I + s^2 J^T J`, `J` the Jacobian of the colour with respect
  * to the domain coordinates.
@@ -31,6 +30,8 @@ namespace Aniso_conformal {
  * `x = c / (W - 1)`, `y = (H - 1 - r) / (W - 1)` (y up, so the image is upright). Colours are in [0, 1].
  * The channels are Gaussian-smoothed (`sigma` pixels) before central differences, then the per-pixel
  * tensors are interpolated bilinearly.
+ *
+ * \cgalModels `AnisotropicMetric`
  */
 class Image_metric {
 public:

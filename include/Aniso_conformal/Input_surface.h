@@ -68,7 +68,7 @@ public:
   }
 
   /*!
-   * builds the surface from a model of `FaceListGraph` (e.g. `CGAL::Surface_mesh`, `CGAL::Polyhedron_3`).
+   * builds the surface from a model of `FaceListGraph` (e.g.\ `CGAL::Surface_mesh`, `CGAL::Polyhedron_3`).
    * Vertex `i` of the copy is the vertex whose index is `i` in the vertex index map.
    * \cgalNamedParamsBegin
    *   \cgalParamNBegin{vertex_point_map} the positions; default: the internal `CGAL::vertex_point_t` map \cgalParamNEnd

@@ -10,14 +10,14 @@
 #include <cmath>
 
 /// \file Paper_metrics.h
-/// The analytic metrics of the paper's 2D experiments (Zhong et al. 2014, section 4.1), as functors
+/// The analytic metrics of the paper's 2D experiments (Zhong et al.\ 2014, section 4.1), as functors
 /// for `Analytic_metric_2`.
 
 namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMetrics
- * the metric of the paper's Fig. 6 on the unit square: `M = diag(s1^2, s2^2)` with
+ * the metric of the paper's Fig.\ 6 on the unit square: `M = diag(s1^2, s2^2)` with
  * `s1 = 1 / (0.031 + x)`, `s2 = 1 / (0.031 + y)` (stretch ratio up to 33).
  */
 struct Fig6_metric {
@@ -33,7 +33,7 @@ struct Fig6_metric {
 
 /*!
  * \ingroup PkgAnisoConformalMetrics
- * the circular field of the paper's Fig. 7 (eq. 8), `M = R^T diag(Stretch^2, 1) R`, as we define it
+ * the circular field of the paper's Fig.\ 7 (eq.\ 8), `M = R^T diag(Stretch^2, 1) R`, as we define it
  * (the paper shows it only as a picture): around the centre `c = (0.5, 0.5)`, with `r = |x - c|`,
  * the first row of `R` is the direction tangent to the circles, so edges are short along the circles
  * and long across them (elements point radially), and

@@ -33,7 +33,6 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalDomains
- * \cgalModels `ParametricDomainTraits`
  * the planar domain of a disk-topology surface or a 2D domain: the background triangulation laid out
  * by `conformal_embedding()`, with the CVT density `cf^2` linear over each background triangle.
  *
@@ -46,6 +45,8 @@ namespace Aniso_conformal {
  * Integration is exact: each background triangle is clipped against the Voronoi cells it meets (a
  * restricted Voronoi diagram, found by walking the Delaunay graph from the site nearest to a corner),
  * and the mass, first moment and energy of the linear density over each piece have closed forms.
+ *
+ * \cgalModels `ParametricDomainTraits`
  */
 class Planar_domain_traits {
 public:

@@ -20,10 +20,11 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMetrics
- * \cgalModels `AnisotropicMetric`
  * a metric given by one symmetric 3x3 tensor per input vertex, interpolated linearly inside the
  * triangles. On a surface a tensor may be singular along the normal (paper eq. 4); it must be
  * positive definite on the tangent plane (`remesh()` checks this and throws `Invalid_input`).
+ *
+ * \cgalModels `AnisotropicMetric`
  */
 class Tensor_field_metric {
 public:
@@ -35,7 +36,7 @@ public:
 
   /*!
    * builds the metric from a property map `tensor_map` (vertex descriptor to a type with `operator()(i,j)`,
-   * e.g. `Eigen::Matrix3d`) on the mesh `tm`, indexed like `remesh()` indexes vertices (the vertex index map of `np`).
+   * e.g.\ `Eigen::Matrix3d`) on the mesh `tm`, indexed like `remesh()` indexes vertices (the vertex index map of `np`).
    */
   template <typename TriangleMesh, typename TensorMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
   Tensor_field_metric(const TriangleMesh& tm, TensorMap tensor_map,

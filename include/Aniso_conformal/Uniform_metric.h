@@ -14,9 +14,10 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMetrics
- * \cgalModels `AnisotropicMetric`
  * the isotropic metric `M = I` (Euclidean lengths): `remesh()` with it is an isotropic CVT remesher.
  * Only the shape of a metric matters, since the number of output vertices is given.
+ *
+ * \cgalModels `AnisotropicMetric`
  */
 class Uniform_metric {
 public:

@@ -140,7 +140,7 @@ inline bool mollify(Intrinsic_triangulation& itri, Edge_adjustment_report& repor
  * \ingroup PkgAnisoConformalStages
  * makes the metric edge lengths of `itri` a valid triangulation (paper 3.2): computes the lengths
  * (`compute_metric_edge_lengths()`), makes the triangulation metric-Delaunay by edge flips (paper
- * Fig. 3), and while some triangle still violates the triangle inequality splits its longest edge at
+ * Fig.\ 3), and while some triangle still violates the triangle inequality splits its longest edge at
  * the midpoint (projected onto `surface`; its `Q` is the mean of the edge's ends), then repeats.
  *
  * \param itri the triangulation, modified in place

@@ -79,7 +79,7 @@ private:
 /*!
  * \ingroup PkgAnisoConformalMain
  * remeshes `surface` into a triangle mesh with exactly `number_of_vertices` vertices whose triangles are
- * as close to equilateral as possible when measured in `metric`, by the method of Zhong et al. 2014:
+ * as close to equilateral as possible when measured in `metric`, by the method of Zhong et al.\ 2014:
  * metric edge lengths (with metric-Delaunay flips and longest-edge splits), conformal embedding into
  * the plane, weighted CVT with density `cf^2`, Delaunay dual mapped back onto the input.
  *
