@@ -3,8 +3,9 @@
 //
 // The paper's Fig. 9: a 211 x 211 grey-scale CT slice (the bundled public-domain ct_head_211.png) meshed
 // with the image metric of eq. 9, 3000 output vertices. The paper used s = 0.5 on its image; on this
-// high-contrast slice the fixed-boundary embedding degenerates triangles at the image border from
-// s = 0.3 on (a clear Convergence_failure), so the example uses s = 0.2 (pass another as 4th argument).
+// high-contrast slice the conformal factor near the border grows so fast from s = 0.3 on that the dual
+// would have flat boundary triangles (remesh() then throws Convergence_failure), so the example uses
+// s = 0.2 (pass another as 4th argument).
 // Usage: fig9_ct_image [output_folder [number_of_vertices [image [s]]]]
 
 #include "figure_common.h"

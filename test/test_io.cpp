@@ -334,6 +334,16 @@ BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
   BOOST_TEST(r.conformal_flips > 0u);
   BOOST_TEST(r.quality.theta_min > 5.0);
   BOOST_TEST(r.quality.G_avg > 0.8);
+
+  // at the paper's s = 0.5 this slice cannot be remeshed well: a clear exception, never flat triangles
+  bool refused = false;
+  try {
+    AC::remesh(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
+               AC::parameters::number_of_vertices(std::size_t(3000)));
+  } catch(const AC::Convergence_failure& e) {
+    refused = std::string(e.what()).find("degenerate triangles") != std::string::npos && e.residual() > 0;
+  }
+  BOOST_TEST(refused);
 }
 
 // --------------------------------------------------------------------------- square background

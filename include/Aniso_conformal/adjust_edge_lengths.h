@@ -143,6 +143,9 @@ inline bool mollify(Intrinsic_triangulation& itri, Edge_adjustment_report& repor
  * Fig.\ 3), and while some triangle still violates the triangle inequality splits its longest edge at
  * the midpoint (projected onto `surface`; its `Q` is the mean of the edge's ends), then repeats.
  *
+ * A boundary edge facing an angle above 120 degrees is split too (Ruppert's encroached segments):
+ * boundary edges cannot be flipped, and the conformal scaling would flatten such a triangle.
+ *
  * \param itri the triangulation, modified in place
  * \param surface the input surface the vertices of `itri` lie on
  * \param np optional named parameters:
@@ -225,10 +228,21 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
     report.flips += flips_this_round;
     compute_metric_edge_lengths(itri);
 
-    // 2. longest-edge splits of the triangles that are still invalid
+    // 2. longest-edge splits of the triangles that are still invalid, and splits of the boundary edges
+    //    that face an angle above 120 degrees: such nearly flat boundary triangles cannot be flipped
+    //    away, and the conformal scaling would flatten them completely (Ruppert's encroached segments)
     std::vector<int> to_split;
     for(std::size_t f = 0; f < itri.number_of_faces(); ++f) {
-      if(internal::face_is_valid(itri, f)) continue;
+      if(internal::face_is_valid(itri, f)) {
+        for(int k = 0; k < 3; ++k) {
+          const int h = int(3 * f) + k;
+          if(!itri.is_boundary_edge(h)) continue;
+          const double o = itri.length(h), a = itri.length(Intrinsic_triangulation::next(h)),
+                       b = itri.length(Intrinsic_triangulation::prev(h));
+          if(a * a + b * b - o * o < -a * b) to_split.push_back(h);  // cos(opposite angle) < -1/2
+        }
+        continue;
+      }
       int best = int(3 * f);
       for(int k = 1; k < 3; ++k)
         if(itri.length(int(3 * f + k)) > itri.length(best)) best = int(3 * f + k);

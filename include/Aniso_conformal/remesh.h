@@ -105,7 +105,8 @@ private:
  * \throws Invalid_input if the topology is not a disk, the metric is unusable (non-finite, not symmetric,
  *         not positive definite on the tangent plane), `number_of_vertices` is missing, below the minimum
  *         (3, and at least the number of corners), or above the number of background vertices
- * \throws Convergence_failure if an iterative stage does not converge within its bound
+ * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
+ *         output would have an inverted or degenerate triangle (it is never returned)
  * \throws Cancelled if the visitor asked to stop
  */
 template <typename AnisotropicMetric, typename NamedParameters = parameters::Default_named_parameters>
@@ -189,6 +190,11 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     if(!(nf.dot(ref) > 0)) ++result.inverted_triangles;
   }
   result.seconds[int(Stage::QUALITY)] = t6.stop(vis);
+  if(result.inverted_triangles > 0)
+    throw Convergence_failure("remesh(): the output has " + std::to_string(result.inverted_triangles) +
+                                  " inverted or degenerate triangles (G_min " + std::to_string(result.quality.G_min) +
+                                  "): the metric is too strong for this background near its boundary",
+                              double(result.inverted_triangles));
   return out;
 }
 
