@@ -1,9 +1,22 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds everything (library tests, tool, examples, benchmarks) in build/
 # and runs the whole Boost.Test suite through ctest.
+#   ./test.sh --sanitize   builds the tests and the tool with AddressSanitizer and
+#                          UndefinedBehaviorSanitizer in build-sanitize/ and runs the suite there
 set -euo pipefail
 cd "$(dirname "$0")"
 ./scripts/install_dependencies.sh
+if [[ "${1:-}" == "--sanitize" ]]; then
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DANISO_CONFORMAL_SANITIZE=ON \
+        -DANISO_CONFORMAL_BUILD_TESTS=ON -DANISO_CONFORMAL_BUILD_TOOLS=ON \
+        -DANISO_CONFORMAL_BUILD_EXAMPLES=OFF -DANISO_CONFORMAL_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build build-sanitize -j"$(nproc)"
+  cd build-sanitize
+  # the install-and-consume test builds an unsanitized project: not meaningful here
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --output-on-failure -j1 -E find_package_consumer
+  exit 0
+fi
 # explicit ON: ./run.sh configures the same build/ with only the tool
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DANISO_CONFORMAL_BUILD_TESTS=ON -DANISO_CONFORMAL_BUILD_EXAMPLES=ON \
       -DANISO_CONFORMAL_BUILD_TOOLS=ON -DANISO_CONFORMAL_BUILD_BENCHMARKS=ON >/dev/null
