@@ -52,9 +52,8 @@ double median(std::vector<double> v)
   return v.empty() ? 0 : v[v.size() / 2];
 }
 
-template <typename Metric>
-Case analytic_case(const std::string& name, const std::string& fig, Metric metric, std::size_t n, double pp, double pc,
-                   std::size_t pin)
+// the fields every case has: its name, figure, output size and the paper's Table 1 figures
+Case case_header(const std::string& name, const std::string& fig, std::size_t n, double pp, double pc, std::size_t pin)
 {
   Case c;
   c.name = name;
@@ -63,6 +62,14 @@ Case analytic_case(const std::string& name, const std::string& fig, Metric metri
   c.paper_param_seconds = pp;
   c.paper_cvt_seconds = pc;
   c.paper_input_vertices = pin;
+  return c;
+}
+
+template <typename Metric>
+Case analytic_case(const std::string& name, const std::string& fig, Metric metric, std::size_t n, double pp, double pc,
+                   std::size_t pin)
+{
+  Case c = case_header(name, fig, n, pp, pc, pin);
   c.background = [metric, n]() { return AC::make_square_background(metric, n); };
   c.run = [metric, n](const AC::Input_surface& s, AC::Remeshing_result& r) {
     return AC::remesh(s, metric, r, AC::parameters::number_of_vertices(n).number_of_iterations(100u));
@@ -73,13 +80,7 @@ Case analytic_case(const std::string& name, const std::string& fig, Metric metri
 Case image_case(const std::string& name, const std::string& fig, const std::string& file, double s, std::size_t n,
                 double pp, double pc, std::size_t pin)
 {
-  Case c;
-  c.name = name;
-  c.figure = fig;
-  c.vertices = n;
-  c.paper_param_seconds = pp;
-  c.paper_cvt_seconds = pc;
-  c.paper_input_vertices = pin;
+  Case c = case_header(name, fig, n, pp, pc, pin);
   auto img = std::make_shared<AC::IO::Image>(AC::IO::read_image(file));
   auto metric = std::make_shared<AC::Image_metric>(*img, s);
   c.background = [img]() { return AC::make_image_background(*img); };

@@ -22,6 +22,8 @@
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/remesh.h>
 
+#include "mesh_checks.h"
+
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -47,6 +49,12 @@ std::string message_of(const std::function<void()>& f)
 {
   try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
   return "(no Invalid_input)";
+}
+
+// the message of reading a mesh file `name` holding `content`
+std::string mesh_file_error(const std::string& name, const std::string& content)
+{
+  return message_of([&] { AC::IO::read_triangle_mesh(write_file(name, content)); });
 }
 
 bool contains(const std::string& s, const std::string& part)
@@ -86,41 +94,19 @@ BOOST_AUTO_TEST_CASE(mesh_files_round_trip_in_every_format)
 BOOST_AUTO_TEST_CASE(bad_mesh_files_name_the_problem)
 {
   BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(out_dir + "/missing.off"); }), "missing.off: cannot be opened"));
-  BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(write_file("mesh.stl", "solid x\n")); }), "unsupported extension"));
-  BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(write_file("garbage.off", "this is not a mesh\n")); }),
-                      "garbage.off"));
-  BOOST_TEST(contains(message_of([] { AC::IO::read_triangle_mesh(write_file("empty.off", "")); }), "empty.off"));
-  BOOST_TEST(contains(message_of([] {
-                        AC::IO::read_triangle_mesh(write_file("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"));
-                      }),
-                      "face 0 has 4 vertices"));
-  BOOST_TEST(contains(message_of([] {
-                        AC::IO::read_triangle_mesh(write_file("nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"));
-                      }),
-                      "nan.off"));
+  BOOST_TEST(contains(mesh_file_error("mesh.stl", "solid x\n"), "unsupported extension"));
+  BOOST_TEST(contains(mesh_file_error("garbage.off", "this is not a mesh\n"), "garbage.off"));
+  BOOST_TEST(contains(mesh_file_error("empty.off", ""), "empty.off"));
+  BOOST_TEST(contains(mesh_file_error("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"), "face 0 has 4 vertices"));
+  BOOST_TEST(contains(mesh_file_error("nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"), "nan.off"));
   // non-manifold edge: three triangles on the edge 0-1
-  BOOST_TEST(contains(message_of([] {
-                        AC::IO::read_triangle_mesh(write_file(
-                            "fin.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n"));
-                      }),
-                      "edge"));
+  BOOST_TEST(contains(mesh_file_error("fin.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n"), "edge"));
   // zero-area face
-  BOOST_TEST(contains(message_of([] {
-                        AC::IO::read_triangle_mesh(write_file("flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n"));
-                      }),
-                      "face 0 is degenerate"));
+  BOOST_TEST(contains(mesh_file_error("flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n"), "face 0 is degenerate"));
   // two triangles touching at one vertex: a non-manifold vertex
-  BOOST_TEST(contains(message_of([] {
-                        AC::IO::read_triangle_mesh(write_file(
-                            "bowtie.off", "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n"));
-                      }),
-                      "vertex 0 is non-manifold"));
+  BOOST_TEST(contains(mesh_file_error("bowtie.off", "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n"), "vertex 0 is non-manifold"));
   // two separate triangles
-  BOOST_TEST(contains(message_of([] {
-                        AC::IO::read_triangle_mesh(write_file(
-                            "two.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n5 0 0\n6 0 0\n5 1 0\n3 0 1 2\n3 3 4 5\n"));
-                      }),
-                      "2 connected components"));
+  BOOST_TEST(contains(mesh_file_error("two.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n5 0 0\n6 0 0\n5 1 0\n3 0 1 2\n3 3 4 5\n"), "2 connected components"));
   // an index out of range
   BOOST_TEST(contains(message_of([] { AC::Input_surface({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{{0, 1, 7}}}); }),
                       "face 0 refers to vertex 7"));
@@ -144,17 +130,9 @@ BOOST_AUTO_TEST_CASE(bundled_face_mask_remeshes_as_a_disk)
   BOOST_TEST(out.points.size() == 250u);
   BOOST_TEST(r.inverted_triangles == 0u);
   // one disk: Euler characteristic 1, one boundary loop made of the boundary sites
-  std::set<std::pair<std::size_t, std::size_t>> directed, edges;
-  for(const auto& f : out.faces)
-    for(int k = 0; k < 3; ++k) {
-      directed.insert({f[k], f[(k + 1) % 3]});
-      edges.insert(std::minmax(f[k], f[(k + 1) % 3]));
-    }
-  BOOST_TEST(int(out.points.size()) - int(edges.size()) + int(out.faces.size()) == 1);
-  std::size_t boundary_edges = 0;
-  for(const auto& d : directed)
-    if(!directed.count({d.second, d.first})) ++boundary_edges;
-  BOOST_TEST(boundary_edges == r.boundary_sites);
+  const test::Mesh_counts m = test::count_mesh(out.points, out.faces);
+  BOOST_TEST(m.euler == 1);
+  BOOST_TEST(m.boundary_edges == r.boundary_sites);
   // every output vertex lies on the input: its surface point reproduces it
   for(std::size_t i = 0; i < out.points.size(); ++i) {
     const AC::Surface_point& sp = out.surface_points[i];
@@ -295,10 +273,7 @@ BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
   BOOST_TEST(out.points.size() == 400u);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.corners == 4u);
-  double area = 0;
-  for(const auto& f : out.faces)
-    area += 0.5 * (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]).z();
-  BOOST_TEST(std::abs(area - 49.0 / 59.0) < 1e-9);
+  BOOST_TEST(std::abs(test::count_mesh(out.points, out.faces).planar_area - 49.0 / 59.0) < 1e-9);
   BOOST_TEST(r.quality.G_avg > 0.75);
 
   // the JSON report and the pictures are written and well formed
@@ -355,10 +330,7 @@ BOOST_AUTO_TEST_CASE(square_background_resolves_the_metric)
   BOOST_TEST(bg.is_disk());
   BOOST_TEST(bg.number_of_vertices() > 3000u);  // paper: 5112
   BOOST_TEST(bg.number_of_vertices() < 8000u);
-  double area = 0;
-  for(const auto& f : bg.faces())
-    area += 0.5 * (bg.points()[f[1]] - bg.points()[f[0]]).cross(bg.points()[f[2]] - bg.points()[f[0]]).z();
-  BOOST_TEST(std::abs(area - 1) < 1e-12);
+  BOOST_TEST(std::abs(test::count_mesh(bg.points(), bg.faces()).planar_area - 1) < 1e-12);
   // graded like the metric: denser near the origin corner, where the metric is largest
   std::size_t near = 0, far = 0;
   for(const auto& p : bg.points()) {

@@ -19,6 +19,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include "mesh_checks.h"
+
 #include <cmath>
 #include <limits>
 #include <set>
@@ -38,24 +40,15 @@ struct Planar_checks {
 // Area, corners, boundary and Euler characteristic of a planar output.
 Planar_checks check_planar(const AC::Remeshed_surface& out)
 {
+  const test::Mesh_counts m = test::count_mesh(out.points, out.faces);
   Planar_checks c;
-  for(const auto& f : out.faces) {
-    const Eigen::Vector3d a = out.points[f[0]], b = out.points[f[1]], d = out.points[f[2]];
-    c.area += 0.5 * ((b - a).cross(d - a)).z();
-  }
+  c.area = m.planar_area;
+  c.boundary_edges = m.boundary_edges;
+  c.euler = m.euler;
   for(const auto& p : out.points)
     for(const Eigen::Vector3d& corner : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
                                         Eigen::Vector3d(0, 1, 0)})
       if((p - corner).norm() < 1e-12) ++c.corners_found;
-  std::set<std::pair<std::size_t, std::size_t>> directed, edges;
-  for(const auto& f : out.faces)
-    for(int k = 0; k < 3; ++k) {
-      directed.insert({f[k], f[(k + 1) % 3]});
-      edges.insert(std::minmax(f[k], f[(k + 1) % 3]));
-    }
-  for(const auto& d : directed)
-    if(!directed.count({d.second, d.first})) ++c.boundary_edges;
-  c.euler = int(out.points.size()) - int(edges.size()) + int(out.faces.size());
   return c;
 }
 
@@ -90,12 +83,15 @@ struct Cancel_after {
 
 } // namespace
 
-BOOST_AUTO_TEST_CASE(fig6_meets_the_quality_bar)
+// The quality bar on the unit square: exactly n vertices, no inverted triangle, the square
+// covered exactly with its four corners, one disk, G_avg >= 0.85, theta_min >= 10, %<30 <= 5.
+template <typename Metric>
+void check_quality_bar(const char* name, const Metric& metric, std::size_t n)
 {
   AC::Remeshing_result r;
-  const auto out = remesh_square(AC::make_analytic_metric_2(AC::Fig6_metric()), 1000, r);
+  const auto out = remesh_square(metric, n, r);
   const Planar_checks c = check_planar(out);
-  BOOST_TEST(out.points.size() == 1000u);
+  BOOST_TEST(out.points.size() == n);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(std::abs(c.area - 1.0) <= 1e-9);
   BOOST_TEST(c.corners_found == 4u);
@@ -104,25 +100,18 @@ BOOST_AUTO_TEST_CASE(fig6_meets_the_quality_bar)
   BOOST_TEST(r.quality.G_avg >= 0.85);
   BOOST_TEST(r.quality.theta_min >= 10.0);
   BOOST_TEST(r.quality.percent_below_30 <= 5.0);
-  BOOST_TEST_MESSAGE("Fig. 6: G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg << " theta_min "
-                                      << r.quality.theta_min << " %<30 " << r.quality.percent_below_30);
+  BOOST_TEST_MESSAGE(name << ": G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg << " theta_min "
+                          << r.quality.theta_min << " %<30 " << r.quality.percent_below_30);
+}
+
+BOOST_AUTO_TEST_CASE(fig6_meets_the_quality_bar)
+{
+  check_quality_bar("Fig. 6", AC::make_analytic_metric_2(AC::Fig6_metric()), 1000);
 }
 
 BOOST_AUTO_TEST_CASE(fig7_meets_the_quality_bar)
 {
-  AC::Remeshing_result r;
-  const auto out = remesh_square(AC::make_analytic_metric_2(AC::Circular_metric()), 4000, r);
-  const Planar_checks c = check_planar(out);
-  BOOST_TEST(out.points.size() == 4000u);
-  BOOST_TEST(r.inverted_triangles == 0u);
-  BOOST_TEST(std::abs(c.area - 1.0) <= 1e-9);
-  BOOST_TEST(c.corners_found == 4u);
-  BOOST_TEST(c.euler == 1);
-  BOOST_TEST(r.quality.G_avg >= 0.85);
-  BOOST_TEST(r.quality.theta_min >= 10.0);
-  BOOST_TEST(r.quality.percent_below_30 <= 5.0);
-  BOOST_TEST_MESSAGE("Fig. 7: G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg << " theta_min "
-                                      << r.quality.theta_min << " %<30 " << r.quality.percent_below_30);
+  check_quality_bar("Fig. 7", AC::make_analytic_metric_2(AC::Circular_metric()), 4000);
 }
 
 BOOST_AUTO_TEST_CASE(same_seed_same_output_bit_for_bit)
@@ -206,12 +195,7 @@ BOOST_AUTO_TEST_CASE(disk_surface_keeps_boundary_and_corners)
       if((p - pts[v]).norm() < 1e-12) ++corners;
   BOOST_TEST(corners == 4u);
   // boundary vertices of the output lie on the input boundary (|x| = 1 or |y| = 1)
-  std::set<std::pair<std::size_t, std::size_t>> directed;
-  for(const auto& f : out.faces)
-    for(int k = 0; k < 3; ++k) directed.insert({f[k], f[(k + 1) % 3]});
-  std::set<std::size_t> boundary;
-  for(const auto& d : directed)
-    if(!directed.count({d.second, d.first})) boundary.insert(d.first);
+  const std::set<std::size_t> boundary = test::count_mesh(out.points, out.faces).boundary_vertices;
   BOOST_TEST(boundary.size() == r.boundary_sites);
   for(std::size_t v : boundary) {
     const Eigen::Vector3d& p = out.points[v];
