@@ -7,7 +7,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/conformal_embedding.h>
-#include <Aniso_conformal/internal/CVT/clip_integrate.h>
+#include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -74,35 +74,27 @@ public:
     : m_itri(itri)
   {
     const std::size_t nf = itri.number_of_faces();
-    m_tri.resize(nf);
-    const std::vector<std::size_t> order = morton_order(itri, emb);
+    std::vector<Eigen::Vector2d> centroids(nf);
+    for(std::size_t f = 0; f < nf; ++f) {
+      const auto& c = itri.face_vertices(f);
+      centroids[f] = (emb.uv[c[0]] + emb.uv[c[1]] + emb.uv[c[2]]) / 3.0;
+    }
+    const std::vector<std::size_t> order = internal::morton_order(centroids);
+    m_tri.reserve(nf);
     for(std::size_t i = 0; i < nf; ++i) {
       const std::size_t f = order[i];
       const auto& c = itri.face_vertices(f);
-      Background_triangle& T = m_tri[i];
-      T.face = int(f);
+      std::array<Eigen::Vector2d, 3> p;
+      std::array<double, 3> rho;
       for(int k = 0; k < 3; ++k) {
-        T.p[k] = emb.uv[c[k]];
-        T.rho[k] = emb.conformal_factor[c[k]] * emb.conformal_factor[c[k]];
+        p[k] = emb.uv[c[k]];
+        rho[k] = emb.conformal_factor[c[k]] * emb.conformal_factor[c[k]];
       }
-      // affine density rho(y) = r0 + rg.y through the three corners
-      Eigen::Matrix3d A;
-      for(int k = 0; k < 3; ++k) A.row(k) << 1, T.p[k].x(), T.p[k].y();
-      Eigen::Vector3d coef = A.fullPivLu().solve(Eigen::Vector3d(T.rho[0], T.rho[1], T.rho[2]));
-      T.r0 = coef[0];
-      T.rg = Eigen::Vector2d(coef[1], coef[2]);
-      const Eigen::Vector2d e1 = T.p[1] - T.p[0], e2 = T.p[2] - T.p[0];
-      T.area = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
-      m_total_mass += T.area * (T.rho[0] + T.rho[1] + T.rho[2]) / 3.0;
-      T.g = (T.p[0] + T.p[1] + T.p[2]) / 3.0;
-      internal::Cell_accumulator whole;
-      internal::integrate_polygon(T.p, 3, T.r0, T.rg, T.g, whole);
-      T.mass = whole.mass;
-      T.central = whole.energy;
-      T.first = Eigen::Vector2d(whole.mx, whole.my) - whole.mass * T.g;
-      m_area += T.area;
+      m_tri.push_back(internal::make_background_triangle(p, rho, int(f)));
+      m_total_mass += m_tri.back().area * (rho[0] + rho[1] + rho[2]) / 3.0;
+      m_area += m_tri.back().area;
     }
-    build_grid();
+    m_grid.build(m_tri);
     build_boundary();
     m_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
   }
@@ -122,22 +114,9 @@ public:
   /// finds the background face containing `p` and the barycentric coordinates of `p` in it; `false` if outside
   bool locate(const Point& p, int& face, Eigen::Vector3d& bary, double tolerance = 1e-9) const
   {
-    const int gx = cell_x(p.x()), gy = cell_y(p.y());
-    if(gx < 0 || gy < 0) return false;
-    double best = -1e300;
-    for(int f : m_grid[gy * m_nx + gx]) {
-      const Eigen::Vector3d b = barycentric(f, p);
-      const double m = b.minCoeff();
-      if(m > best) {
-        best = m;
-        face = m_tri[f].face;
-        bary = b;
-      }
-      if(m >= 0) break;
-    }
-    if(best < -tolerance) return false;
-    bary = bary.cwiseMax(0.0);
-    bary /= bary.sum();
+    int t = -1;
+    if(!m_grid.locate(m_tri, p, t, bary, tolerance)) return false;
+    face = m_tri[std::size_t(t)].face;
     return true;
   }
   /// `true` if `p` is in the domain
@@ -179,25 +158,8 @@ public:
     // chosen triangle. A space-filling-curve sample is already well spread, so the CVT starts close to
     // its optimum; the seed changes both the offset and the points.
     std::mt19937_64 rng(seed);
-    std::vector<double> cdf(m_tri.size());
-    double acc = 0;
-    for(std::size_t f = 0; f < m_tri.size(); ++f) {
-      acc += m_tri[f].mass;
-      cdf[f] = acc;
-    }
-    std::uniform_real_distribution<double> U(0.0, 1.0);
-    const std::size_t m = n - sites.size();
-    const double offset = U(rng);
-    for(std::size_t k = 0; k < m; ++k) {
-      const double r = (double(k) + offset) / double(m) * acc;
-      const std::size_t f = std::min(m_tri.size() - 1, std::size_t(std::lower_bound(cdf.begin(), cdf.end(), r) - cdf.begin()));
-      double a = U(rng), b = U(rng);
-      if(a + b > 1) { a = 1 - a; b = 1 - b; }
-      // shrink towards the centroid so no site starts on an edge of the domain
-      const Background_triangle& T = m_tri[f];
-      const Point p = T.p[0] + a * (T.p[1] - T.p[0]) + b * (T.p[2] - T.p[0]);
-      sites.push_back(T.g + 0.98 * (p - T.g));
-    }
+    const std::vector<Point> inside = internal::stratified_samples(m_tri, n - sites.size(), rng);
+    sites.insert(sites.end(), inside.begin(), inside.end());
     return sites;
   }
   /// the number of fixed (boundary) sites placed by the last `initial_sites()`
@@ -259,95 +221,15 @@ public:
     dt.insert(pts.begin(), pts.end());
     std::vector<DT::Vertex_handle> handle(ns);
     for(auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) handle[v->info()] = v;
-    // Delaunay neighbours in CSR form; coincident sites keep an empty cell
-    std::vector<int> start(ns + 1, 0), nbr;
-    for(std::size_t i = 0; i < ns; ++i) {
-      start[i] = int(nbr.size());
-      if(handle[i] == DT::Vertex_handle() || handle[i]->info() != int(i)) continue;
-      auto c = dt.incident_vertices(handle[i]), done = c;
-      if(c != nullptr) do {
-        if(!dt.is_infinite(c)) nbr.push_back(c->info());
-      } while(++c != done);
-    }
-    start[ns] = int(nbr.size());
-
-    // fixed chunks summed in order: the result does not depend on the number of threads
-    const std::size_t chunks = 16, nf = m_tri.size();
-    std::vector<std::vector<internal::Cell_accumulator>> acc(chunks, std::vector<internal::Cell_accumulator>(ns));
-    int any_site = 0;
-    while(any_site < int(ns) && start[any_site] == start[any_site + 1] && ns > 1) ++any_site;
-    auto work = [&](std::size_t chunk) {
-      std::vector<int> stamp(ns, -1), stack;
-      internal::Small_polygon poly_a, poly_b;
-      int seed = any_site;
-      for(std::size_t f = chunk * nf / chunks; f < (chunk + 1) * nf / chunks; ++f) {
-        const Background_triangle& T = m_tri[f];
-        // greedy walk on the Delaunay graph to the site nearest to a corner (exact for Delaunay graphs);
-        // triangles are in Morton order, so the previous seed is close
-        double best = (sites[seed] - T.p[0]).squaredNorm();
-        for(bool moved = true; moved;) {
-          moved = false;
-          for(int j = start[seed]; j < start[seed + 1]; ++j) {
-            const double d = (sites[nbr[j]] - T.p[0]).squaredNorm();
-            if(d < best) { best = d; seed = nbr[j]; moved = true; break; }
-          }
-        }
-        stack.assign(1, seed);
-        stamp[seed] = int(f);
-        while(!stack.empty()) {
-          const int s = stack.back();
-          stack.pop_back();
-          internal::Small_polygon* poly = &poly_a;
-          internal::Small_polygon* tmp = &poly_b;
-          poly->assign(T.p[0], T.p[1], T.p[2]);
-          const Eigen::Vector2d& ps = sites[s];
-          bool clipped = false;
-          for(int j = start[s]; j < start[s + 1] && poly->n >= 3; ++j) {
-            const Eigen::Vector2d& pn = sites[nbr[j]];
-            if(internal::clip_half_plane(*poly, 2.0 * (pn - ps), pn.squaredNorm() - ps.squaredNorm(), *tmp)) {
-              clipped = true;
-              std::swap(poly, tmp);
-            }
-          }
-          if(poly->n < 3) continue;
-          if(clipped) {
-            internal::integrate_polygon(poly->p, std::size_t(poly->n), T.r0, T.rg, ps, acc[chunk][s]);
-          } else {
-            // the whole triangle is in the cell: parallel-axis theorem on the precomputed moments
-            internal::Cell_accumulator& A = acc[chunk][s];
-            const Eigen::Vector2d d = T.g - ps;
-            A.mass += T.mass;
-            A.mx += T.first.x() + T.mass * T.g.x();
-            A.my += T.first.y() + T.mass * T.g.y();
-            A.energy += T.central + 2 * d.dot(T.first) + d.squaredNorm() * T.mass;
-            continue;  // no neighbour's cell meets T
-          }
-          for(int j = start[s]; j < start[s + 1]; ++j) {
-            const int n = nbr[j];
-            if(stamp[n] == int(f)) continue;
-            // n's cell can meet T only if a corner of T is closer to n than to s
-            const Eigen::Vector2d a = 2.0 * (sites[n] - ps);
-            const double b = sites[n].squaredNorm() - ps.squaredNorm();
-            if(a.dot(T.p[0]) <= b && a.dot(T.p[1]) <= b && a.dot(T.p[2]) <= b) continue;
-            stamp[n] = int(f);
-            stack.push_back(n);
-          }
-        }
-      }
-    };
-    run_chunks(chunks, work);
+    std::vector<int> start, nbr;
+    internal::delaunay_neighbours(dt, handle, start, nbr);
+    std::vector<internal::Cell_accumulator> acc;
+    internal::integrate_restricted_voronoi(m_tri, sites, start, nbr, m_threads, acc);
     cells.assign(ns, Cell());
     for(std::size_t i = 0; i < ns; ++i) {
-      internal::Cell_accumulator a;
-      for(std::size_t c = 0; c < chunks; ++c) {
-        a.mass += acc[c][i].mass;
-        a.mx += acc[c][i].mx;
-        a.my += acc[c][i].my;
-        a.energy += acc[c][i].energy;
-      }
-      cells[i].mass = a.mass;
-      cells[i].energy = a.energy;
-      cells[i].centroid = a.mass > 0 ? Point(a.mx / a.mass, a.my / a.mass) : sites[i];
+      cells[i].mass = acc[i].mass;
+      cells[i].energy = acc[i].energy;
+      cells[i].centroid = acc[i].mass > 0 ? Point(acc[i].mx / acc[i].mass, acc[i].my / acc[i].mass) : sites[i];
     }
   }
   /// @}
@@ -459,111 +341,10 @@ private:
   typedef CGAL::Triangulation_data_structure_2<CVb, CFb> CTds;
   typedef CGAL::Constrained_Delaunay_triangulation_2<K, CTds, CGAL::Exact_predicates_tag> CDT;
 
-  struct Background_triangle {
-    std::array<Eigen::Vector2d, 3> p;
-    std::array<double, 3> rho;
-    int face = -1;  // index in the Intrinsic_triangulation
-    // integrals over the whole triangle about its centroid g: used when no bisector cuts it
-    Eigen::Vector2d g = Eigen::Vector2d::Zero();
-    double mass = 0, central = 0;   // int rho, int rho |y - g|^2
-    Eigen::Vector2d first = Eigen::Vector2d::Zero();  // int rho (y - g)
-    double r0 = 0, area = 0;
-    Eigen::Vector2d rg = Eigen::Vector2d::Zero();
-  };
-
-  // background faces sorted along a Morton curve of their domain centroids: nearby faces are processed
-  // together, which keeps the nearest-site walks short and the memory accesses local
-  static std::vector<std::size_t> morton_order(const Intrinsic_triangulation& itri, const Planar_embedding& emb)
-  {
-    const std::size_t nf = itri.number_of_faces();
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for(const auto& p : emb.uv) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
-    const Eigen::Vector2d ext = (hi - lo).cwiseMax(1e-300);
-    std::vector<std::pair<std::uint64_t, std::size_t>> key(nf);
-    for(std::size_t f = 0; f < nf; ++f) {
-      const auto& c = itri.face_vertices(f);
-      const Eigen::Vector2d g = (emb.uv[c[0]] + emb.uv[c[1]] + emb.uv[c[2]]) / 3.0;
-      const std::uint64_t x = std::uint64_t(std::min(1.0, std::max(0.0, (g.x() - lo.x()) / ext.x())) * 65535.0);
-      const std::uint64_t y = std::uint64_t(std::min(1.0, std::max(0.0, (g.y() - lo.y()) / ext.y())) * 65535.0);
-      std::uint64_t code = 0;
-      for(int b = 0; b < 16; ++b) code |= ((x >> b) & 1u) << (2 * b) | ((y >> b) & 1u) << (2 * b + 1);
-      key[f] = {code, f};
-    }
-    std::sort(key.begin(), key.end());
-    std::vector<std::size_t> order(nf);
-    for(std::size_t i = 0; i < nf; ++i) order[i] = key[i].second;
-    return order;
-  }
-
-  template <typename Work>
-  void run_chunks(std::size_t chunks, Work& work) const
-  {
-    const unsigned nt = std::min<unsigned>(m_threads, unsigned(chunks));
-    if(nt <= 1) {
-      for(std::size_t c = 0; c < chunks; ++c) work(c);
-      return;
-    }
-    std::vector<std::thread> pool;
-    for(unsigned t = 0; t < nt; ++t)
-      pool.emplace_back([&, t]() {
-        for(std::size_t c = t; c < chunks; c += nt) work(c);
-      });
-    for(auto& th : pool) th.join();
-  }
-
-  Eigen::Vector3d barycentric(int f, const Point& p) const
-  {
-    const Background_triangle& T = m_tri[f];
-    const Eigen::Vector2d e1 = T.p[1] - T.p[0], e2 = T.p[2] - T.p[0], w = p - T.p[0];
-    const double det = e1.x() * e2.y() - e1.y() * e2.x();
-    const double b1 = (w.x() * e2.y() - w.y() * e2.x()) / det, b2 = (e1.x() * w.y() - e1.y() * w.x()) / det;
-    return Eigen::Vector3d(1 - b1 - b2, b1, b2);
-  }
-
-  int cell_x(double x) const
-  {
-    const int i = int(std::floor((x - m_lo.x()) / m_cell));
-    return (i < 0 || i >= m_nx) ? -1 : i;
-  }
-  int cell_y(double y) const
-  {
-    const int j = int(std::floor((y - m_lo.y()) / m_cell));
-    return (j < 0 || j >= m_ny) ? -1 : j;
-  }
-
-  void build_grid()
-  {
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for(const auto& T : m_tri)
-      for(const auto& p : T.p) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-      }
-    const Eigen::Vector2d ext = hi - lo;
-    const double pad = 1e-9 * std::max(ext.x(), ext.y());
-    m_lo = lo - Eigen::Vector2d(pad, pad);
-    const Eigen::Vector2d size = ext + Eigen::Vector2d(2 * pad, 2 * pad);
-    m_cell = std::sqrt(size.x() * size.y() / std::max<double>(1.0, double(m_tri.size()) / 2));
-    m_nx = std::max(1, int(std::ceil(size.x() / m_cell)));
-    m_ny = std::max(1, int(std::ceil(size.y() / m_cell)));
-    m_grid.assign(std::size_t(m_nx) * m_ny, {});
-    for(std::size_t f = 0; f < m_tri.size(); ++f) {
-      Eigen::Vector2d a = m_tri[f].p[0].cwiseMin(m_tri[f].p[1]).cwiseMin(m_tri[f].p[2]);
-      Eigen::Vector2d b = m_tri[f].p[0].cwiseMax(m_tri[f].p[1]).cwiseMax(m_tri[f].p[2]);
-      const double eps = 1e-9 * m_cell;
-      const int x0 = std::max(0, int(std::floor((a.x() - eps - m_lo.x()) / m_cell)));
-      const int x1 = std::min(m_nx - 1, int(std::floor((b.x() + eps - m_lo.x()) / m_cell)));
-      const int y0 = std::max(0, int(std::floor((a.y() - eps - m_lo.y()) / m_cell)));
-      const int y1 = std::min(m_ny - 1, int(std::floor((b.y() + eps - m_lo.y()) / m_cell)));
-      for(int y = y0; y <= y1; ++y)
-        for(int x = x0; x <= x1; ++x) m_grid[std::size_t(y) * m_nx + x].push_back(int(f));
-    }
-  }
-
   void build_boundary()
   {
     m_uv_of_vertex.assign(m_itri.number_of_vertices(), Point::Zero());
-    for(const Background_triangle& T : m_tri)
+    for(const internal::Background_triangle& T : m_tri)
       for(int k = 0; k < 3; ++k) m_uv_of_vertex[m_itri.face_vertices(std::size_t(T.face))[k]] = T.p[k];
     int h0 = -1;
     for(int h = 0; h < int(m_itri.number_of_halfedges()); ++h)
@@ -649,16 +430,13 @@ private:
   }
 
   const Intrinsic_triangulation& m_itri;
-  std::vector<Background_triangle> m_tri;
+  std::vector<internal::Background_triangle> m_tri;
   std::vector<Point> m_uv_of_vertex;
   std::vector<int> m_boundary, m_boundary_halfedges;
   std::vector<Boundary_location> m_boundary_sites;
   std::size_t m_sites_fixed = 0;
   double m_total_mass = 0, m_area = 0, m_perimeter = 0, m_perimeter_metric_ratio = 1;
-  Eigen::Vector2d m_lo = Eigen::Vector2d::Zero();
-  double m_cell = 1;
-  int m_nx = 1, m_ny = 1;
-  std::vector<std::vector<int>> m_grid;
+  internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
 };
 

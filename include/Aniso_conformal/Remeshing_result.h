@@ -24,7 +24,7 @@ namespace Aniso_conformal {
  */
 struct Remeshing_result {
   std::array<double, number_of_stages> seconds{};  ///< wall time of each stage, indexed by `Stage`
-  std::string domain;                              ///< the parametric domain used ("plane")
+  std::string domain;                              ///< the parametric domain used ("plane", "flat-torus")
   std::size_t input_vertices = 0;                  ///< vertices of the input
   std::size_t input_faces = 0;                     ///< faces of the input
   std::size_t background_vertices = 0;             ///< vertices of the background after adjustment
@@ -40,6 +40,12 @@ struct Remeshing_result {
   std::size_t boundary_sites = 0;                  ///< output vertices on the boundary
   std::size_t inverted_triangles = 0;              ///< output triangles whose orientation disagrees with the input
   Quality_report quality;                          ///< quality of the output in the metric
+  /// symmetric Hausdorff distance between the output and the input, approximated by closest-point
+  /// queries from the output's vertices, edge midpoints and face centroids to the input and from the
+  /// input's vertices to the output
+  double hausdorff_distance = 0;
+  double hausdorff_distance_relative = 0;          ///< `hausdorff_distance` over the input's bounding-box diagonal
+  std::array<double, 4> lattice{};                 ///< flat torus only: the reduced lattice basis (a.x, a.y, b.x, b.y)
   /// total wall time
   double total_seconds() const
   {

@@ -32,6 +32,33 @@ enum class Cvt_method {
 
 /*!
  * \ingroup PkgAnisoConformalParameters
+ * the canonical domain of the conformal embedding (stage 3), chosen from the input's topology by default
+ */
+enum class Parametric_domain {
+  AUTOMATIC,   ///< from the topology: a disk goes to the plane, a closed genus-1 surface to the flat torus
+  PLANE,       ///< the plane, for topological disks (2D domains, images, open patches)
+  FLAT_TORUS,  ///< the flat torus, for closed surfaces of genus 1
+  SPHERE,      ///< the unit sphere, for closed surfaces of genus 0 (not available in this version)
+  HYPERBOLIC   ///< the hyperbolic disk, for closed surfaces of genus 2 or more (not available in this version)
+};
+
+/*!
+ * \ingroup PkgAnisoConformalParameters
+ * the name of a domain, as the command-line tool spells it ("plane", "flat-torus", ...)
+ */
+inline const char* domain_name(Parametric_domain d)
+{
+  switch(d) {
+  case Parametric_domain::PLANE: return "plane";
+  case Parametric_domain::FLAT_TORUS: return "flat-torus";
+  case Parametric_domain::SPHERE: return "sphere";
+  case Parametric_domain::HYPERBOLIC: return "hyperbolic";
+  default: return "automatic";
+  }
+}
+
+/*!
+ * \ingroup PkgAnisoConformalParameters
  * a sequence of named parameters. It is a `CGAL::Named_function_parameters`, so it can be passed to
  * CGAL functions, and it adds chaining members for this library's own parameters and for the CGAL
  * parameters this library documents (CGAL 5.5 has no `combine()`, so a pack built from a CGAL

@@ -4,6 +4,7 @@
 #ifndef ANISO_CONFORMAL_REMESH_H
 #define ANISO_CONFORMAL_REMESH_H
 
+#include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
@@ -14,6 +15,7 @@
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/conformal_embedding.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/flat_torus_embedding.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/parameters.h>
@@ -76,16 +78,107 @@ private:
 
 } // namespace internal
 
+namespace internal {
+
+// the domain for `surface`: `requested`, checked against the topology, or chosen from it
+inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_domain requested)
+{
+  const bool closed = surface.boundary_loops().empty();
+  const Parametric_domain fits = surface.is_disk() ? Parametric_domain::PLANE
+                                 : !closed         ? Parametric_domain::AUTOMATIC
+                                 : surface.genus() == 0 ? Parametric_domain::SPHERE
+                                 : surface.genus() == 1 ? Parametric_domain::FLAT_TORUS
+                                                        : Parametric_domain::HYPERBOLIC;
+  if(requested != Parametric_domain::AUTOMATIC && requested != fits)
+    throw Invalid_input(std::string("remesh(): the ") + domain_name(requested) + " domain does not fit the input, which is " +
+                        surface.topology_description() +
+                        " (the plane takes topological disks, the flat torus closed surfaces of genus 1)");
+  if(fits == Parametric_domain::PLANE || fits == Parametric_domain::FLAT_TORUS) return fits;
+  if(fits == Parametric_domain::AUTOMATIC)
+    throw Invalid_input("remesh(): the input is " + surface.topology_description() +
+                        "; this version remeshes topological disks (the plane) and closed surfaces of genus 1 (the flat torus)");
+  throw Invalid_input("remesh(): the input is " + surface.topology_description() + "; its domain, the " + domain_name(fits) +
+                      ", is not available in this version (topological disks and closed surfaces of genus 1 are)");
+}
+
+template <typename Embedding>
+void record_embedding(const Embedding& emb, Remeshing_result& result)
+{
+  result.conformal_iterations = emb.iterations;
+  result.conformal_residual = emb.residual;
+  result.conformal_flips = emb.flips;
+  result.conformal_factor_min = *std::min_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+  result.conformal_factor_max = *std::max_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+}
+
+// stages 4 and 5, the same for every domain
+template <typename DomainTraits, typename NamedParameters, typename Visitor>
+Remeshed_surface cvt_and_dual_mesh(const Input_surface& surface, const Intrinsic_triangulation& itri, const DomainTraits& domain,
+                                   std::vector<typename DomainTraits::Point>& sites, const NamedParameters& np, Visitor& vis,
+                                   Remeshing_result& result)
+{
+  Stage_timer t4(vis, Stage::CVT);
+  result.boundary_sites = domain.number_of_fixed_sites();
+  result.cvt = weighted_centroidal_Voronoi_tessellation(domain, sites, domain.number_of_fixed_sites(), np);
+  result.seconds[int(Stage::CVT)] = t4.stop(vis);
+  Stage_timer t5(vis, Stage::DUAL_MESH);
+  Remeshed_surface out = extract_dual_mesh(surface, itri, domain, sites);
+  result.seconds[int(Stage::DUAL_MESH)] = t5.stop(vis);
+  return out;
+}
+
+// The output as a validated surface: a 2-manifold, consistently oriented, connected, with the input's
+// genus and number of boundary loops; also gives the closest-point queries of the Hausdorff distance.
+inline Input_surface check_output_topology(const Remeshed_surface& out, const Input_surface& input)
+{
+  std::vector<Input_surface::Face> faces(out.faces.begin(), out.faces.end());
+  try {
+    Input_surface s(out.points, std::move(faces));
+    if(s.genus() != input.genus() || s.boundary_loops().size() != input.boundary_loops().size())
+      throw Convergence_failure("remesh(): the output is " + s.topology_description() + " but the input is " +
+                                    input.topology_description(),
+                                0);
+    return s;
+  } catch(const Invalid_input& e) {
+    throw Convergence_failure(std::string("remesh(): the output is not a valid surface: ") + e.what(), 0);
+  }
+}
+
+// symmetric Hausdorff distance, sampled (see Remeshing_result::hausdorff_distance)
+inline double hausdorff_distance(const Input_surface& input, const Input_surface& output)
+{
+  double d = 0;
+  for(const Eigen::Vector3d& p : input.points()) d = std::max(d, (output.project(p).position - p).norm());
+  const auto& P = output.points();
+  for(const auto& f : output.faces()) {
+    const Eigen::Vector3d a = P[f[0]], b = P[f[1]], c = P[f[2]];
+    for(const Eigen::Vector3d& q : {a, Eigen::Vector3d((a + b) / 2), Eigen::Vector3d((b + c) / 2), Eigen::Vector3d((c + a) / 2),
+                                    Eigen::Vector3d((a + b + c) / 3)})
+      d = std::max(d, (input.project(q).position - q).norm());
+  }
+  return d;
+}
+
+} // namespace internal
+
 /*!
  * \ingroup PkgAnisoConformalMain
  * remeshes `surface` into a triangle mesh with exactly `number_of_vertices` vertices whose triangles are
  * as close to equilateral as possible when measured in `metric`, by the method of Zhong et al.\ 2014:
  * metric edge lengths (with metric-Delaunay flips and longest-edge splits), conformal embedding into
- * the plane, weighted CVT with density `cf^2`, Delaunay dual mapped back onto the input.
+ * the canonical domain of the surface's topology, weighted CVT with density `cf^2` there, Delaunay dual
+ * mapped back onto the input.
  *
- * This version supports surfaces of disk topology (a 2D domain, an image, an open curved patch): the
- * output keeps the boundary (boundary vertices on the input boundary, corners turning by more than
- * `corner_angle` degrees kept as vertices) and is a single disk.
+ * The domain follows the topology (or the `parametric_domain` named parameter, checked against it):
+ * - a topological disk (a 2D domain, an image, an open curved patch) goes to the plane: the output
+ *   keeps the boundary (boundary vertices on the input boundary, corners turning by more than
+ *   `corner_angle` degrees kept as vertices) and is a single disk;
+ * - a closed surface of genus 1 goes to the flat torus (`flat_torus_embedding()`,
+ *   `Euclidean_periodic_domain_traits`): the output is a closed genus-1 surface.
+ *
+ * The output is checked before it is returned: a consistently oriented, connected 2-manifold with the
+ * input's genus and boundary count, no triangle inverted against the input's normals; every vertex lies
+ * on the input (`Remeshing_result::hausdorff_distance` measures how close the output follows it).
  *
  * \tparam AnisotropicMetric a model of `AnisotropicMetric`
  * \param surface the input (never modified)
@@ -96,17 +189,21 @@ private:
  *   - `number_of_iterations` (default 100): CVT iterations;
  *   - `cvt_method` (default `Cvt_method::LBFGS`);
  *   - `random_seed` (default 0): seed of the initial sites; the same seed gives the same output bit for bit;
+ *   - `parametric_domain` (default `Parametric_domain::AUTOMATIC`): the domain, refused if it does not
+ *     fit the topology;
  *   - `corner_angle` (default 30): boundary turning angle, in degrees, above which a vertex is a corner;
  *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
  *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
  *   - `number_of_threads` (default 0 = all cores) for the CVT integration;
  *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).
  * \returns the output mesh as arrays
- * \throws Invalid_input if the topology is not a disk, the metric is unusable (non-finite, not symmetric,
- *         not positive definite on the tangent plane), `number_of_vertices` is missing, below the minimum
- *         (3, and at least the number of corners), or above the number of background vertices
+ * \throws Invalid_input if the topology has no domain in this version (a surface with several boundary
+ *         loops, a closed surface of genus 0 or above 1) or does not fit `parametric_domain`, the metric is
+ *         unusable (non-finite, not symmetric, not positive definite on the tangent plane),
+ *         `number_of_vertices` is missing, below the minimum (3, and at least the number of corners),
+ *         or above the number of background vertices
  * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
- *         output would have an inverted or degenerate triangle (it is never returned)
+ *         output would have an inverted or degenerate triangle or a wrong topology (it is never returned)
  * \throws Cancelled if the visitor asked to stop
  */
 template <typename AnisotropicMetric, typename NamedParameters = parameters::Default_named_parameters>
@@ -115,27 +212,29 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  using CGAL::parameters::is_default_parameter;
   const std::size_t n = choose_parameter(get_parameter(np, internal_np::number_of_vertices), std::size_t(0));
   const unsigned seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
   const double corner_angle = choose_parameter(get_parameter(np, internal_np::corner_angle), 30.0);
   const unsigned threads = choose_parameter(get_parameter(np, internal_np::number_of_threads), 0u);
+  const Parametric_domain requested =
+      choose_parameter(get_parameter(np, internal_np::parametric_domain), Parametric_domain::AUTOMATIC);
   typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
 
   if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
   if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
-  if(!surface.is_disk())
-    throw Invalid_input("remesh(): the input is " + surface.topology_description() +
-                        "; this version remeshes topological disks (the planar domain) only");
+  const Parametric_domain domain = internal::choose_domain(surface, requested);
+  if(domain == Parametric_domain::FLAT_TORUS && n < 7)
+    throw Invalid_input("remesh(): a closed surface of genus 1 needs at least 7 output vertices (the smallest torus "
+                        "triangulation), " + std::to_string(n) + " were requested");
   result = Remeshing_result();
-  result.domain = "plane";
+  result.domain = domain_name(domain);
   result.input_vertices = surface.number_of_vertices();
   result.input_faces = surface.number_of_faces();
 
   // 1. metric
   internal::Stage_timer t1(vis, Stage::METRIC);
   Intrinsic_triangulation itri(surface, compute_metric_square_roots(surface, metric));
-  result.corners = internal::mark_corners(surface, itri, corner_angle);
+  if(domain == Parametric_domain::PLANE) result.corners = internal::mark_corners(surface, itri, corner_angle);
   result.seconds[int(Stage::METRIC)] = t1.stop(vis);
 
   // 2. edge lengths
@@ -147,34 +246,32 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   if(n > itri.number_of_vertices())
     throw Invalid_input("remesh(): " + std::to_string(n) + " output vertices exceed what the background triangulation can carry (" +
                         std::to_string(itri.number_of_vertices()) + " vertices); refine the input");
-
-  // 3. conformal embedding
-  internal::Stage_timer t3(vis, Stage::EMBEDDING);
-  Planar_embedding emb = conformal_embedding(itri, np);
-  result.conformal_iterations = emb.iterations;
-  result.conformal_residual = emb.residual;
-  result.conformal_flips = emb.flips;
-  result.conformal_factor_min = *std::min_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
-  result.conformal_factor_max = *std::max_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
-  result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
-
-  // 4. weighted CVT
-  internal::Stage_timer t4(vis, Stage::CVT);
-  Planar_domain_traits domain(itri, emb, threads);
   double adjusted_area = 0;
   for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
     adjusted_area += internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
-  std::vector<Planar_domain_traits::Point> sites = domain.initial_sites(n, seed, adjusted_area);
-  result.boundary_sites = domain.number_of_fixed_sites();
-  result.cvt = weighted_centroidal_Voronoi_tessellation(domain, sites, domain.number_of_fixed_sites(), np);
-  result.seconds[int(Stage::CVT)] = t4.stop(vis);
 
-  // 5. dual mesh
-  internal::Stage_timer t5(vis, Stage::DUAL_MESH);
-  Remeshed_surface out = extract_dual_mesh(surface, itri, domain, sites);
-  result.seconds[int(Stage::DUAL_MESH)] = t5.stop(vis);
+  // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
+  Remeshed_surface out;
+  if(domain == Parametric_domain::PLANE) {
+    internal::Stage_timer t3(vis, Stage::EMBEDDING);
+    const Planar_embedding emb = conformal_embedding(itri, np);
+    internal::record_embedding(emb, result);
+    result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
+    Planar_domain_traits traits(itri, emb, threads);
+    std::vector<Planar_domain_traits::Point> sites = traits.initial_sites(n, seed, adjusted_area);
+    out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+  } else {
+    internal::Stage_timer t3(vis, Stage::EMBEDDING);
+    const Flat_torus_embedding emb = flat_torus_embedding(itri, np);
+    internal::record_embedding(emb, result);
+    result.lattice = {{emb.lattice[0].x(), emb.lattice[0].y(), emb.lattice[1].x(), emb.lattice[1].y()}};
+    result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
+    Euclidean_periodic_domain_traits traits(itri, emb, threads);
+    std::vector<Euclidean_periodic_domain_traits::Point> sites = traits.initial_sites(n, seed);
+    out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+  }
 
-  // 6. quality, in the metric, and orientation against the input
+  // 6. quality, in the metric, orientation against the input, topology and distance to the input
   internal::Stage_timer t6(vis, Stage::QUALITY);
   std::vector<Eigen::Matrix3d> Q(out.points.size());
   for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = internal::symmetric_sqrt(metric.tensor(out.surface_points[i]));
@@ -189,12 +286,16 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     if(surface.is_planar()) ref = Eigen::Vector3d(0, 0, 1);
     if(!(nf.dot(ref) > 0)) ++result.inverted_triangles;
   }
-  result.seconds[int(Stage::QUALITY)] = t6.stop(vis);
   if(result.inverted_triangles > 0)
     throw Convergence_failure("remesh(): the output has " + std::to_string(result.inverted_triangles) +
                                   " inverted or degenerate triangles (G_min " + std::to_string(result.quality.G_min) +
-                                  "): the metric is too strong for this background near its boundary",
+                                  "): the metric is too strong for this background" +
+                                  (domain == Parametric_domain::PLANE ? " near its boundary" : ""),
                               double(result.inverted_triangles));
+  const Input_surface checked = internal::check_output_topology(out, surface);
+  result.hausdorff_distance = internal::hausdorff_distance(surface, checked);
+  result.hausdorff_distance_relative = result.hausdorff_distance / surface.bounding_box_diagonal();
+  result.seconds[int(Stage::QUALITY)] = t6.stop(vis);
   return out;
 }
 

@@ -1,0 +1,359 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_EUCLIDEAN_PERIODIC_DOMAIN_TRAITS_H
+#define ANISO_CONFORMAL_EUCLIDEAN_PERIODIC_DOMAIN_TRAITS_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/flat_torus_embedding.h>
+#include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <random>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+/// \file Euclidean_periodic_domain_traits.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalDomains
+ * the flat torus `R^2 / L` of a closed genus-1 surface: the background triangulation laid out by
+ * `flat_torus_embedding()`, each triangle translated by a lattice vector so that its centroid lies in
+ * the fundamental cell `{s a + t b : 0 <= s, t < 1}` of the reduced basis `(a, b)`, with the CVT
+ * density `cf^2` linear over each triangle.
+ *
+ * Sites are points of the plane standing for their classes modulo `L`; none is fixed. To integrate,
+ * the sites are wrapped into the fundamental cell and translated copies are added in a band around it,
+ * wide enough that every Voronoi cell meeting a background triangle is complete: the band starts at
+ * three site spacings beyond the triangles' reach and is widened until every Delaunay circle that
+ * matters lies inside it (a test, not a guess). A CGAL `Delaunay_triangulation_2` of the sites and
+ * copies gives the Voronoi diagram of the torus; each background triangle is clipped against the cells
+ * it meets and the integrals of the copies are folded back onto their sites (first moments shifted by
+ * the copy's lattice vector). CGAL's `Periodic_2_Delaunay_triangulation_2` is not used because it
+ * handles only rectangular (axis-aligned) domains.
+ *
+ * \cgalModels `ParametricDomainTraits`
+ */
+class Euclidean_periodic_domain_traits {
+public:
+  /// \name Types
+  /// @{
+  typedef Eigen::Vector2d Point;  ///< a point of the plane, standing for its class modulo the lattice
+  /// integrals of the density over the Voronoi cell of one site on the torus
+  struct Cell {
+    double mass = 0;                 ///< integral of rho
+    Point centroid = Point::Zero();  ///< (integral of rho y) / mass, next to the site (same lattice translate), or the site when the mass is 0
+    double energy = 0;               ///< integral of rho |y - site|^2
+  };
+  /// @}
+
+  /// \name Creation
+  /// @{
+
+  /// lays out the background of `itri` with the embedding `emb`; `threads` workers integrate (0 = hardware)
+  Euclidean_periodic_domain_traits(const Intrinsic_triangulation& itri, const Flat_torus_embedding& emb, unsigned threads = 0)
+    : m_lattice(emb.lattice)
+  {
+    m_basis.col(0) = m_lattice[0];
+    m_basis.col(1) = m_lattice[1];
+    m_inverse = m_basis.inverse();
+    m_area = m_basis.determinant();
+    if(!(m_area > 0)) throw Invalid_input("Euclidean_periodic_domain_traits: the lattice basis is degenerate");
+    m_height = {{m_area / m_lattice[1].norm(), m_area / m_lattice[0].norm()}};
+    const std::size_t nf = itri.number_of_faces();
+    std::vector<std::array<Eigen::Vector2d, 3>> corners(nf);
+    std::vector<Eigen::Vector2d> centroids(nf);
+    for(std::size_t f = 0; f < nf; ++f) {
+      const auto& c = emb.corner_uv[f];
+      const Eigen::Vector2d g = (c[0] + c[1] + c[2]) / 3.0;
+      const Eigen::Vector2d shift = wrap(g) - g;
+      for(int k = 0; k < 3; ++k) corners[f][k] = c[k] + shift;
+      centroids[f] = g + shift;
+    }
+    const std::vector<std::size_t> order = internal::morton_order(centroids);
+    m_tri.reserve(nf);
+    m_reach = {{0.0, 0.0}};
+    for(std::size_t i = 0; i < nf; ++i) {
+      const std::size_t f = order[i];
+      const auto& c = itri.face_vertices(f);
+      std::array<double, 3> rho;
+      for(int k = 0; k < 3; ++k) {
+        rho[k] = emb.conformal_factor[std::size_t(c[k])] * emb.conformal_factor[std::size_t(c[k])];
+        const Eigen::Vector2d st = m_inverse * corners[f][k];
+        for(int d = 0; d < 2; ++d) m_reach[d] = std::max({m_reach[d], -st[d], st[d] - 1.0});
+      }
+      m_tri.push_back(internal::make_background_triangle(corners[f], rho, int(f)));
+      m_total_mass += m_tri.back().area * (rho[0] + rho[1] + rho[2]) / 3.0;
+    }
+    m_grid.build(m_tri);
+    m_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  }
+  /// @}
+
+  /// \name Domain
+  /// @{
+
+  /// the reduced lattice basis `(a, b)`
+  const std::array<Point, 2>& lattice() const { return m_lattice; }
+  /// area of the fundamental cell (the area of the flat metric)
+  double area() const { return m_area; }
+  /// integral of the density over the torus
+  double total_mass() const { return m_total_mass; }
+  /// the lattice coordinates `(s, t)` of `p = s a + t b`
+  Eigen::Vector2d lattice_coordinates(const Point& p) const { return m_inverse * p; }
+  /// the translate of `p` in the fundamental cell `{s a + t b : 0 <= s, t < 1}`
+  Point wrap(const Point& p) const
+  {
+    const Eigen::Vector2d st = m_inverse * p;
+    Point w = p - m_basis * Eigen::Vector2d(std::floor(st.x()), std::floor(st.y()));
+    // rounding can leave a coordinate at exactly 1
+    const Eigen::Vector2d st2 = m_inverse * w;
+    if(st2.x() >= 1) w -= m_lattice[0];
+    if(st2.y() >= 1) w -= m_lattice[1];
+    return w;
+  }
+  /// `true` if `p` is finite (the torus has no boundary)
+  bool contains(const Point& p) const { return p.allFinite(); }
+  /// `target` (the torus has no boundary)
+  Point move_towards(const Point&, const Point& target) const { return target; }
+  /// @}
+
+  /// \name Sites
+  /// @{
+
+  /*!
+   * places `n` sites spread over the density (stratified along a space-filling curve of the background
+   * triangles; deterministic for a `seed`), in the fundamental cell.
+   * \throws Invalid_input if `n < 1`
+   */
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed) const
+  {
+    if(n < 1) throw Invalid_input("the flat torus needs at least one site");
+    std::mt19937_64 rng(seed);
+    std::vector<Point> sites = internal::stratified_samples(m_tri, n, rng);
+    for(Point& p : sites) p = wrap(p);
+    return sites;
+  }
+  /// 0: no site is fixed on a closed surface
+  std::size_t number_of_fixed_sites() const { return 0; }
+  /*!
+   * where site `i` at `site` lies on the background: the face of the `Intrinsic_triangulation` and
+   * the barycentric coordinates in it (the site's class is located, whatever its translate).
+   * \returns `false` if it cannot be located (a non-finite site)
+   */
+  bool background_location(std::size_t /*i*/, const Point& site, int& face, Eigen::Vector3d& bary) const
+  {
+    if(!site.allFinite()) return false;
+    const Point w = wrap(site);
+    // a background triangle was wrapped by its centroid, so the point may be covered by a neighbour's translate
+    for(double tol : {1e-9, 1e-6})
+      for(int i : {0, -1, 1})
+        for(int j : {0, -1, 1}) {
+          int t = -1;
+          if(m_grid.locate(m_tri, w + double(i) * m_lattice[0] + double(j) * m_lattice[1], t, bary, tol)) {
+            face = m_tri[std::size_t(t)].face;
+            return true;
+          }
+        }
+    return false;
+  }
+  /// @}
+
+  /// \name Integration
+  /// @{
+
+  /// computes mass, centroid and energy of the Voronoi cell of every site on the torus
+  void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const
+  {
+    const std::size_t ns = sites.size();
+    std::vector<Point> wrapped(ns);
+    for(std::size_t i = 0; i < ns; ++i) wrapped[i] = wrap(sites[i]);
+    Periodic_delaunay pd;
+    build_periodic_delaunay(wrapped, pd);
+    std::vector<int> start, nbr;
+    internal::delaunay_neighbours(pd.dt, pd.handle, start, nbr);
+    std::vector<internal::Cell_accumulator> acc;
+    internal::integrate_restricted_voronoi(m_tri, pd.points, start, nbr, m_threads, acc);
+    std::vector<internal::Cell_accumulator> folded(ns);
+    for(std::size_t e = 0; e < pd.points.size(); ++e) {
+      const internal::Cell_accumulator& a = acc[e];
+      if(a.mass == 0) continue;
+      internal::Cell_accumulator& f = folded[std::size_t(pd.original[e])];
+      const Eigen::Vector2d shift = pd.points[e] - wrapped[std::size_t(pd.original[e])];
+      f.mass += a.mass;
+      f.mx += a.mx - a.mass * shift.x();
+      f.my += a.my - a.mass * shift.y();
+      f.energy += a.energy;
+    }
+    cells.assign(ns, Cell());
+    for(std::size_t i = 0; i < ns; ++i) {
+      const internal::Cell_accumulator& a = folded[i];
+      cells[i].mass = a.mass;
+      cells[i].energy = a.energy;
+      // the centroid next to the given translate of the site, so that site - centroid is the gradient
+      cells[i].centroid = a.mass > 0 ? Point(Point(a.mx / a.mass, a.my / a.mass) + (sites[i] - wrapped[i])) : sites[i];
+    }
+  }
+  /// @}
+
+  /// \name Dual mesh
+  /// @{
+  /*!
+   * the periodic Delaunay triangulation of `sites` on the torus: triangles as index triples,
+   * counterclockwise, each once (`2 n` of them).
+   * \throws Convergence_failure if two sites coincide or the sites are too few for a periodic Delaunay
+   *         triangulation that is a simplicial complex (a triangle meeting two translates of one site)
+   */
+  std::vector<std::array<std::size_t, 3>> dual_triangles(const std::vector<Point>& sites) const
+  {
+    const std::size_t ns = sites.size();
+    std::vector<Point> wrapped(ns);
+    for(std::size_t i = 0; i < ns; ++i) wrapped[i] = wrap(sites[i]);
+    Periodic_delaunay pd;
+    build_periodic_delaunay(wrapped, pd);
+    for(std::size_t i = 0; i < ns; ++i)
+      if(pd.handle[i]->info() != int(i))
+        throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with site " +
+                                      std::to_string(pd.handle[i]->info()) + " on the torus",
+                                  0);
+    std::vector<std::array<std::size_t, 3>> tris;
+    for(auto f = pd.dt.finite_faces_begin(); f != pd.dt.finite_faces_end(); ++f) {
+      std::array<int, 3> e = {{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}};
+      if(e[0] >= int(ns) && e[1] >= int(ns) && e[2] >= int(ns)) continue;
+      std::array<std::size_t, 3> o;
+      for(int k = 0; k < 3; ++k) o[k] = std::size_t(pd.original[std::size_t(e[k])]);
+      if(o[0] == o[1] || o[1] == o[2] || o[2] == o[0])
+        throw Convergence_failure("dual mesh: " + std::to_string(ns) +
+                                      " sites are too few for the flat torus (a Delaunay triangle meets two translates of site " +
+                                      std::to_string(o[0] == o[1] || o[0] == o[2] ? o[0] : o[1]) + ")",
+                                  0);
+      // each triangle of the torus once: the translate whose lowest-numbered site is the original
+      const int k = int(std::min_element(o.begin(), o.end()) - o.begin());
+      if(e[std::size_t(k)] < int(ns)) tris.push_back(o);
+    }
+    if(tris.size() != 2 * ns)
+      throw Convergence_failure("dual mesh: the periodic Delaunay triangulation has " + std::to_string(tris.size()) +
+                                    " triangles instead of " + std::to_string(2 * ns),
+                                double(tris.size()));
+    return tris;
+  }
+
+  /// the Voronoi cell of every site on the torus, as a counterclockwise polygon around the wrapped site (for pictures)
+  std::vector<std::vector<Point>> voronoi_cells(const std::vector<Point>& sites) const
+  {
+    const std::size_t ns = sites.size();
+    std::vector<Point> wrapped(ns);
+    for(std::size_t i = 0; i < ns; ++i) wrapped[i] = wrap(sites[i]);
+    Periodic_delaunay pd;
+    build_periodic_delaunay(wrapped, pd);
+    std::vector<std::vector<Point>> cells(ns);
+    for(std::size_t i = 0; i < ns; ++i) {
+      if(pd.handle[i]->info() != int(i)) continue;
+      auto f = pd.dt.incident_faces(pd.handle[i]), done = f;
+      do {
+        if(!pd.dt.is_infinite(f)) {
+          const K::Point_2 c = pd.dt.circumcenter(f);
+          cells[i].emplace_back(c.x(), c.y());
+        }
+      } while(++f != done);
+    }
+    return cells;
+  }
+  /// @}
+
+private:
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+  typedef CGAL::Triangulation_vertex_base_with_info_2<int, K> Vb;
+  typedef CGAL::Triangulation_data_structure_2<Vb> Tds;
+  typedef CGAL::Delaunay_triangulation_2<K, Tds> DT;
+
+  // the wrapped sites (indices 0 .. n-1) and their translates in a band around the fundamental cell
+  struct Periodic_delaunay {
+    std::vector<Point> points;
+    std::vector<int> original;
+    DT dt;
+    std::vector<DT::Vertex_handle> handle;
+  };
+
+  void build_periodic_delaunay(const std::vector<Point>& wrapped, Periodic_delaunay& pd) const
+  {
+    const std::size_t ns = wrapped.size();
+    if(ns == 0) throw Invalid_input("Euclidean_periodic_domain_traits: no site");
+    const double spacing = std::sqrt(m_area / double(ns));
+    std::vector<Eigen::Vector2d> st(ns);
+    for(std::size_t i = 0; i < ns; ++i) st[i] = m_inverse * wrapped[i];
+    double widen = 3;
+    for(int attempt = 0; attempt < 8; ++attempt, widen *= 1.6) {
+      // band half-widths in lattice coordinates
+      const double ms = m_reach[0] + widen * spacing / m_height[0], mt = m_reach[1] + widen * spacing / m_height[1];
+      pd.points.assign(wrapped.begin(), wrapped.end());
+      pd.original.resize(ns);
+      for(std::size_t i = 0; i < ns; ++i) pd.original[i] = int(i);
+      const int ks = int(std::ceil(ms)), kt = int(std::ceil(mt));
+      for(int i = -ks; i <= ks + 1; ++i)
+        for(int j = -kt; j <= kt + 1; ++j) {
+          if(i == 0 && j == 0) continue;
+          for(std::size_t s = 0; s < ns; ++s) {
+            const double a = st[s].x() + i, b = st[s].y() + j;
+            if(a < -ms || a > 1 + ms || b < -mt || b > 1 + mt) continue;
+            pd.points.push_back(wrapped[s] + double(i) * m_lattice[0] + double(j) * m_lattice[1]);
+            pd.original.push_back(int(s));
+          }
+        }
+      pd.dt.clear();
+      std::vector<std::pair<K::Point_2, int>> pts;
+      pts.reserve(pd.points.size());
+      for(std::size_t e = 0; e < pd.points.size(); ++e) pts.emplace_back(K::Point_2(pd.points[e].x(), pd.points[e].y()), int(e));
+      pd.dt.insert(pts.begin(), pts.end());
+      pd.handle.assign(pd.points.size(), DT::Vertex_handle());
+      for(auto v = pd.dt.finite_vertices_begin(); v != pd.dt.finite_vertices_end(); ++v) pd.handle[std::size_t(v->info())] = v;
+      // Every Delaunay circle that matters (around a triangle at an original site, or centred where the
+      // background triangles reach) must lie in the band: then no translate left out can be inside it,
+      // so those triangles and the Voronoi vertices there are those of the torus.
+      bool complete = true;
+      for(auto f = pd.dt.finite_faces_begin(); f != pd.dt.finite_faces_end() && complete; ++f) {
+        const K::Point_2 c = pd.dt.circumcenter(f);
+        const Eigen::Vector2d cc(c.x(), c.y());
+        const Eigen::Vector2d cst = m_inverse * cc;
+        const bool at_original = f->vertex(0)->info() < int(ns) || f->vertex(1)->info() < int(ns) || f->vertex(2)->info() < int(ns);
+        const bool in_reach = cst.x() >= -m_reach[0] && cst.x() <= 1 + m_reach[0] && cst.y() >= -m_reach[1] && cst.y() <= 1 + m_reach[1];
+        if(!at_original && !in_reach) continue;
+        const double r = (cc - pd.points[std::size_t(f->vertex(0)->info())]).norm();
+        const double rs = r / m_height[0], rt = r / m_height[1];
+        complete = cst.x() - rs >= -ms && cst.x() + rs <= 1 + ms && cst.y() - rt >= -mt && cst.y() + rt <= 1 + mt;
+      }
+      if(complete) return;
+    }
+    throw Convergence_failure("flat torus: " + std::to_string(ns) +
+                                  " sites leave Voronoi cells too large for the periodic Delaunay triangulation",
+                              double(ns));
+  }
+
+  std::array<Point, 2> m_lattice;
+  Eigen::Matrix2d m_basis, m_inverse;
+  double m_area = 0, m_total_mass = 0;
+  std::array<double, 2> m_height{};  // distance between consecutive lattice lines parallel to b (resp. a)
+  std::array<double, 2> m_reach{};   // how far (lattice coordinates) the wrapped triangles reach outside the cell
+  std::vector<internal::Background_triangle> m_tri;
+  internal::Triangle_grid m_grid;
+  unsigned m_threads = 1;
+};
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_EUCLIDEAN_PERIODIC_DOMAIN_TRAITS_H

@@ -1,0 +1,92 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_CONFORMAL_TREE_COTREE_H
+#define ANISO_CONFORMAL_INTERNAL_CONFORMAL_TREE_COTREE_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+
+#include <algorithm>
+#include <deque>
+#include <string>
+#include <vector>
+
+namespace Aniso_conformal {
+namespace internal {
+
+// A homology basis of a closed triangulated surface by the tree-cotree decomposition (Eppstein 2003):
+// a spanning tree T of the vertices, a spanning tree C of the faces through edges not in T; the 2g
+// edges in neither close the generators. Cutting the surface along every edge not in C leaves a disk
+// (the fundamental domain) that C unfolds.
+struct Tree_cotree {
+  std::vector<int> parent;         // per vertex: its parent in T (-1 at the root)
+  std::vector<char> in_tree;       // per halfedge: its edge is in T
+  std::vector<char> in_cotree;     // per halfedge: its edge is in C (the dual tree)
+  std::vector<int> generators;     // one halfedge per edge in neither T nor C (2g of them)
+};
+
+inline Tree_cotree tree_cotree(const Intrinsic_triangulation& itri)
+{
+  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces()), nh = int(itri.number_of_halfedges());
+  for(int h = 0; h < nh; ++h)
+    if(itri.twin(h) < 0) throw Invalid_input("tree_cotree(): the triangulation has a boundary (not a closed surface)");
+  Tree_cotree tc;
+  tc.parent.assign(std::size_t(nv), -1);
+  tc.in_tree.assign(std::size_t(nh), 0);
+  tc.in_cotree.assign(std::size_t(nh), 0);
+  // BFS trees keep the generators short, which keeps the fundamental domain compact
+  std::vector<char> seen(std::size_t(nv), 0);
+  std::deque<int> queue(1, 0);
+  seen[0] = 1;
+  while(!queue.empty()) {
+    const int v = queue.front();
+    queue.pop_front();
+    for(int h : itri.outgoing_halfedges(v)) {
+      const int w = itri.head(h);
+      if(seen[std::size_t(w)]) continue;
+      seen[std::size_t(w)] = 1;
+      tc.parent[std::size_t(w)] = v;
+      tc.in_tree[std::size_t(h)] = tc.in_tree[std::size_t(itri.twin(h))] = 1;
+      queue.push_back(w);
+    }
+  }
+  std::vector<char> reached(std::size_t(nf), 0);
+  queue.assign(1, 0);
+  reached[0] = 1;
+  while(!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    for(int k = 0; k < 3; ++k) {
+      const int h = 3 * f + k, t = itri.twin(h), g = Intrinsic_triangulation::face(t);
+      if(tc.in_tree[std::size_t(h)] || reached[std::size_t(g)]) continue;
+      reached[std::size_t(g)] = 1;
+      tc.in_cotree[std::size_t(h)] = tc.in_cotree[std::size_t(t)] = 1;
+      queue.push_back(g);
+    }
+  }
+  if(std::find(seen.begin(), seen.end(), 0) != seen.end() || std::find(reached.begin(), reached.end(), 0) != reached.end())
+    throw Invalid_input("tree_cotree(): the triangulation is not connected");
+  for(int h = 0; h < nh; ++h)
+    if(itri.is_edge_representative(h) && !tc.in_tree[std::size_t(h)] && !tc.in_cotree[std::size_t(h)]) tc.generators.push_back(h);
+  return tc;
+}
+
+// the closed vertex loop of generator halfedge h: tree path from h's head to the common ancestor, back
+// down to h's tail; the loop closes through h itself
+inline std::vector<int> generator_loop(const Intrinsic_triangulation& itri, const Tree_cotree& tc, int h)
+{
+  std::vector<int> pa, pb;  // from the tail (resp. head) up to the root
+  for(int v = itri.tail(h); v >= 0; v = tc.parent[std::size_t(v)]) pa.push_back(v);
+  for(int v = itri.head(h); v >= 0; v = tc.parent[std::size_t(v)]) pb.push_back(v);
+  while(pa.size() > 1 && pb.size() > 1 && pa[pa.size() - 2] == pb[pb.size() - 2]) { pa.pop_back(); pb.pop_back(); }
+  // pa and pb now end at the lowest common ancestor
+  std::vector<int> loop(pb.begin(), pb.end());  // head ... ancestor
+  for(std::size_t i = pa.size() - 1; i-- > 0;) loop.push_back(pa[i]);  // ... down to the tail
+  return loop;
+}
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_CONFORMAL_TREE_COTREE_H
