@@ -9,6 +9,9 @@
 
 #include "../tools/command_line.h"
 
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/make_dupin_cyclide.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -196,4 +199,40 @@ BOOST_AUTO_TEST_CASE(same_seed_same_file)
   BOOST_TEST(run("--domain square --metric fig7 --vertices 200 --iterations 30 --seed 5 --output " + b).status == 0);
   BOOST_TEST(slurp(a) == slurp(b));
   BOOST_TEST(!slurp(a).empty());
+}
+
+BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_one_surface_on_the_flat_torus)
+{
+  // the domain is chosen from the topology; --domain is checked against it
+  const aniso_remesh::Options o = parse({"--input", "t.off", "--domain", "flat-torus", "--vertices", "10"});
+  BOOST_TEST(o.input == "t.off");
+  BOOST_TEST(o.domain.empty());
+  BOOST_TEST((o.parametric_domain == Aniso_conformal::Parametric_domain::FLAT_TORUS));
+  BOOST_TEST(parse_error({"--domain", "flat-torus", "--vertices", "10"}).find("give --input") != std::string::npos);
+  BOOST_TEST(parse_error({"--input", "t.off", "--domain", "donut", "--vertices", "10"}).find("unknown domain") != std::string::npos);
+
+  const std::string in = out_dir + "/cli_cyclide.off", mesh = out_dir + "/cli_cyclide_out.off", report = out_dir + "/cli_cyclide.json";
+  const Aniso_conformal::Input_surface cyclide = Aniso_conformal::make_dupin_cyclide(48, 32);
+  Aniso_conformal::IO::write_polygon_soup(in, cyclide.points(), cyclide.faces());
+  std::remove(mesh.c_str());
+  const Run r = run("--input " + in + " --metric curvature --stretch-max 29 --vertices 500 --output " + mesh + " --report " + report);
+  BOOST_TEST(r.status == 0);
+  BOOST_TEST(r.out.find("domain flat-torus") != std::string::npos);
+  BOOST_TEST(r.out.find("Hausdorff distance") != std::string::npos);
+  const Aniso_conformal::Input_surface out = Aniso_conformal::IO::read_triangle_mesh(mesh);
+  BOOST_TEST(out.number_of_vertices() == 500u);
+  BOOST_TEST(out.genus() == 1);
+  BOOST_TEST(out.boundary_loops().empty());
+  const std::string json = slurp(report);
+  BOOST_TEST(json.find("\"domain\": \"flat-torus\"") != std::string::npos);
+  BOOST_TEST(json.find("\"lattice\"") != std::string::npos);
+  BOOST_TEST(json.find("\"hausdorff_distance\"") != std::string::npos);
+
+  // a domain that does not fit: exit 2, the message names both
+  std::remove(mesh.c_str());
+  const Run bad = run("--input " + in + " --domain plane --vertices 500 --output " + mesh);
+  BOOST_TEST(bad.status == 2);
+  BOOST_TEST(bad.err.find("plane domain does not fit") != std::string::npos);
+  BOOST_TEST(bad.err.find("genus 1") != std::string::npos);
+  BOOST_TEST(!exists(mesh));
 }

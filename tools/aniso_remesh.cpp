@@ -86,6 +86,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .cvt_method(o.cvt == "lloyd" ? AC::Cvt_method::LLOYD : AC::Cvt_method::LBFGS)
                     .corner_angle(o.corner_angle)
                     .number_of_threads(o.threads)
+                    .parametric_domain(o.parametric_domain)
                     .visitor(std::ref(progress));
   const AC::Remeshed_surface out = AC::remesh(surface, metric, result, np);
 
@@ -117,8 +118,11 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     const AC::Quality_report& q = result.quality;
     std::printf("input        %s: %zu vertices, %zu faces (background %zu vertices)\n", input_name.c_str(),
                 result.input_vertices, result.input_faces, result.background_vertices);
-    std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu corners, %zu inverted\n",
-                q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles);
+    std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu corners, %zu inverted (domain %s)\n",
+                q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
+                result.domain.c_str());
+    std::printf("distance     Hausdorff distance to the input %.3g (%.3g of the bounding-box diagonal)\n",
+                result.hausdorff_distance, result.hausdorff_distance_relative);
     std::printf("quality      G_min %.4f  G_avg %.4f  theta_min %.2f  theta_avg %.2f  %%<30 %.3f\n", q.G_min, q.G_avg,
                 q.theta_min, q.theta_avg, q.percent_below_30);
     std::printf("metric edge  normalised length stddev %.3f, min %.3f, max %.3f\n", q.edge_length_stddev,

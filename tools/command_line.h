@@ -7,6 +7,7 @@
 #define ANISO_CONFORMAL_TOOLS_COMMAND_LINE_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/parameters.h>
 
 #include <cerrno>
 #include <cmath>
@@ -19,6 +20,8 @@ namespace aniso_remesh {
 struct Options {
   // input: exactly one of these
   std::string input, domain, image;
+  // --domain with --input or --image: the parametric domain, checked against the topology
+  Aniso_conformal::Parametric_domain parametric_domain = Aniso_conformal::Parametric_domain::AUTOMATIC;
   // metric
   std::string metric;       // curvature | fig6 | fig7 | isotropic (empty: from --metric-file or image)
   std::string metric_file;
@@ -44,7 +47,8 @@ inline const char* usage()
   return "usage: aniso_remesh (--input FILE | --domain square | --image FILE) --vertices N [options]\n"
          "\n"
          "input (one of):\n"
-         "  --input FILE              triangle mesh .off/.obj/.ply (a disk-topology surface, or planar with z = 0)\n"
+         "  --input FILE              triangle mesh .off/.obj/.ply: a disk-topology surface (or planar with z = 0),\n"
+         "                            or a closed surface of genus 1\n"
          "  --domain square           the unit square; the tool builds a background resolving the metric\n"
          "  --image FILE              PNG or PPM/PGM image; the domain is the image rectangle scaled to unit width\n"
          "metric (one of):\n"
@@ -55,6 +59,8 @@ inline const char* usage()
          "  --smoothing-rings R       curvature metric: neighbourhood rings of the smoothing (default 2)\n"
          "  --anisotropy S            image metric: colour weight s of the paper's eq. 9 (default 0.1 colour, 0.2 grey)\n"
          "remeshing:\n"
+         "  --domain NAME             with --input: plane | flat-torus (default: from the topology; a domain\n"
+         "                            that does not fit the input's topology is refused)\n"
          "  --vertices N              number of output vertices (required)\n"
          "  --iterations K            CVT iterations (default 100)\n"
          "  --seed S                  seed of the initial sites (default 0; same seed, same output)\n"
@@ -134,10 +140,22 @@ inline Options parse_command_line(const std::vector<std::string>& args)
     else throw Aniso_conformal::Invalid_input("unknown option '" + a + "' (see --help)");
   }
   if(o.help || o.version) return o;
+  // --domain square is an input; any other --domain names the parametric domain of --input or --image
+  if(!o.domain.empty() && o.domain != "square") {
+    using D = Aniso_conformal::Parametric_domain;
+    const D all[] = {D::AUTOMATIC, D::PLANE, D::FLAT_TORUS, D::SPHERE, D::HYPERBOLIC};
+    bool known = false;
+    for(D d : all)
+      if(o.domain == Aniso_conformal::domain_name(d)) { o.parametric_domain = d; known = true; }
+    if(!known)
+      throw Aniso_conformal::Invalid_input("unknown domain '" + o.domain +
+                                           "' (square; or, with --input: plane, flat-torus, sphere, hyperbolic, automatic)");
+    if(o.input.empty() && o.image.empty())
+      throw Aniso_conformal::Invalid_input("--domain " + o.domain + " names the domain of --input; give --input FILE");
+    o.domain.clear();
+  }
   const int inputs = !o.input.empty() + !o.domain.empty() + !o.image.empty();
-  if(inputs != 1) throw Aniso_conformal::Invalid_input("give exactly one of --input, --domain, --image");
-  if(!o.domain.empty() && o.domain != "square")
-    throw Aniso_conformal::Invalid_input("unknown domain '" + o.domain + "' (this version knows: square)");
+  if(inputs != 1) throw Aniso_conformal::Invalid_input("give exactly one of --input, --domain square, --image");
   if(o.vertices < 0) throw Aniso_conformal::Invalid_input("--vertices N is required");
   if(o.vertices < 3) throw Aniso_conformal::Invalid_input("--vertices must be at least 3");
   if(metric_given && !o.metric_file.empty()) throw Aniso_conformal::Invalid_input("give either --metric or --metric-file");

@@ -85,7 +85,10 @@ public:
       for(int k = 0; k < 3; ++k) corners[f][k] = c[k] + shift;
       centroids[f] = g + shift;
     }
-    const std::vector<std::size_t> order = internal::morton_order(centroids);
+    const Eigen::Vector2d ab = m_lattice[0] + m_lattice[1];
+    const Eigen::Vector2d lo = m_lattice[0].cwiseMin(m_lattice[1]).cwiseMin(ab).cwiseMin(Eigen::Vector2d::Zero());
+    const Eigen::Vector2d hi = m_lattice[0].cwiseMax(m_lattice[1]).cwiseMax(ab).cwiseMax(Eigen::Vector2d::Zero());
+    const std::vector<std::size_t> order = internal::morton_order(centroids, lo, hi);  // the fundamental cell's box
     m_tri.reserve(nf);
     m_reach = {{0.0, 0.0}};
     for(std::size_t i = 0; i < nf; ++i) {
@@ -216,8 +219,9 @@ public:
   /*!
    * the periodic Delaunay triangulation of `sites` on the torus: triangles as index triples,
    * counterclockwise, each once (`2 n` of them).
-   * \throws Convergence_failure if two sites coincide or the sites are too few for a periodic Delaunay
-   *         triangulation that is a simplicial complex (a triangle meeting two translates of one site)
+   * \throws Convergence_failure if two sites coincide (within `1e-9` of the mean spacing) or the sites are
+   *         too few for a periodic Delaunay triangulation that is a simplicial complex (a triangle meeting two
+   *         translates of one site, or two sites joined by two edges)
    */
   std::vector<std::array<std::size_t, 3>> dual_triangles(const std::vector<Point>& sites) const
   {
@@ -226,11 +230,19 @@ public:
     for(std::size_t i = 0; i < ns; ++i) wrapped[i] = wrap(sites[i]);
     Periodic_delaunay pd;
     build_periodic_delaunay(wrapped, pd);
-    for(std::size_t i = 0; i < ns; ++i)
-      if(pd.handle[i]->info() != int(i))
-        throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with site " +
-                                      std::to_string(pd.handle[i]->info()) + " on the torus",
-                                  0);
+    // sites closer than this are one point for the output (their triangles would be degenerate)
+    const double tiny = 1e-9 * std::sqrt(m_area / double(ns));
+    for(std::size_t i = 0; i < ns; ++i) {
+      if(pd.handle[i] == DT::Vertex_handle() || pd.handle[i]->info() != int(i))
+        throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with another site on the torus", 0);
+      auto c = pd.dt.incident_vertices(pd.handle[i]), done = c;
+      do {
+        if(!pd.dt.is_infinite(c) && (pd.points[std::size_t(c->info())] - wrapped[i]).norm() < tiny)
+          throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with site " +
+                                        std::to_string(pd.original[std::size_t(c->info())]) + " on the torus",
+                                    0);
+      } while(++c != done);
+    }
     std::vector<std::array<std::size_t, 3>> tris;
     for(auto f = pd.dt.finite_faces_begin(); f != pd.dt.finite_faces_end(); ++f) {
       std::array<int, 3> e = {{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}};
@@ -250,6 +262,16 @@ public:
       throw Convergence_failure("dual mesh: the periodic Delaunay triangulation has " + std::to_string(tris.size()) +
                                     " triangles instead of " + std::to_string(2 * ns),
                                 double(tris.size()));
+    // two sites joined by two different edges (through different translates): not a simplicial complex
+    std::map<std::pair<std::size_t, std::size_t>, int> edges;
+    for(const auto& t : tris)
+      for(int k = 0; k < 3; ++k) ++edges[std::minmax(t[std::size_t(k)], t[std::size_t((k + 1) % 3)])];
+    for(const auto& e : edges)
+      if(e.second != 2)
+        throw Convergence_failure("dual mesh: " + std::to_string(ns) + " sites are too few for the flat torus (sites " +
+                                      std::to_string(e.first.first) + " and " + std::to_string(e.first.second) +
+                                      " are joined by more than one edge)",
+                                  0);
     return tris;
   }
 
@@ -263,7 +285,7 @@ public:
     build_periodic_delaunay(wrapped, pd);
     std::vector<std::vector<Point>> cells(ns);
     for(std::size_t i = 0; i < ns; ++i) {
-      if(pd.handle[i]->info() != int(i)) continue;
+      if(pd.handle[i] == DT::Vertex_handle() || pd.handle[i]->info() != int(i)) continue;
       auto f = pd.dt.incident_faces(pd.handle[i]), done = f;
       do {
         if(!pd.dt.is_infinite(f)) {

@@ -79,7 +79,9 @@ public:
       const auto& c = itri.face_vertices(f);
       centroids[f] = (emb.uv[c[0]] + emb.uv[c[1]] + emb.uv[c[2]]) / 3.0;
     }
-    const std::vector<std::size_t> order = internal::morton_order(centroids);
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for(const auto& p : emb.uv) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+    const std::vector<std::size_t> order = internal::morton_order(centroids, lo, hi);
     m_tri.reserve(nf);
     for(std::size_t i = 0; i < nf; ++i) {
       const std::size_t f = order[i];

@@ -246,9 +246,6 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   if(n > itri.number_of_vertices())
     throw Invalid_input("remesh(): " + std::to_string(n) + " output vertices exceed what the background triangulation can carry (" +
                         std::to_string(itri.number_of_vertices()) + " vertices); refine the input");
-  double adjusted_area = 0;
-  for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
-    adjusted_area += internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Remeshed_surface out;
@@ -258,6 +255,9 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     internal::record_embedding(emb, result);
     result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
     Planar_domain_traits traits(itri, emb, threads);
+    double adjusted_area = 0;  // after the embedding's flips, whose lengths the boundary spacing matches
+    for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
+      adjusted_area += internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
     std::vector<Planar_domain_traits::Point> sites = traits.initial_sites(n, seed, adjusted_area);
     out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
   } else {

@@ -67,7 +67,9 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
   os << "  \"background\": {\"vertices\": " << r.background_vertices << ", \"faces\": " << r.background_faces << "},\n";
   os << "  \"output\": {\"vertices\": " << q.number_of_vertices << ", \"triangles\": " << q.number_of_triangles
      << ", \"boundary_vertices\": " << r.boundary_sites << ", \"corners\": " << r.corners
-     << ", \"inverted_triangles\": " << r.inverted_triangles << "},\n";
+     << ", \"inverted_triangles\": " << r.inverted_triangles
+     << ", \"hausdorff_distance\": " << json_number(r.hausdorff_distance)
+     << ", \"hausdorff_distance_relative\": " << json_number(r.hausdorff_distance_relative) << "},\n";
   os << "  \"quality\": {\"G_min\": " << json_number(q.G_min) << ", \"G_avg\": " << json_number(q.G_avg)
      << ", \"theta_min\": " << json_number(q.theta_min) << ", \"theta_avg\": " << json_number(q.theta_avg)
      << ", \"percent_below_30\": " << json_number(q.percent_below_30) << ", \"theta_max\": " << json_number(q.theta_max)
@@ -85,7 +87,11 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
   os << "  \"conformal_embedding\": {\"newton_iterations\": " << r.conformal_iterations
      << ", \"residual\": " << json_number(r.conformal_residual) << ", \"intrinsic_flips\": " << r.conformal_flips
      << ", \"conformal_factor_min\": " << json_number(r.conformal_factor_min)
-     << ", \"conformal_factor_max\": " << json_number(r.conformal_factor_max) << "},\n";
+     << ", \"conformal_factor_max\": " << json_number(r.conformal_factor_max);
+  if(r.domain == "flat-torus")
+    os << ", \"lattice\": [[" << json_number(r.lattice[0]) << ", " << json_number(r.lattice[1]) << "], ["
+       << json_number(r.lattice[2]) << ", " << json_number(r.lattice[3]) << "]]";
+  os << "},\n";
   os << "  \"cvt\": {\"method\": \"" << (r.cvt.method == Cvt_method::LLOYD ? "lloyd" : "lbfgs")
      << "\", \"iterations\": " << r.cvt.iterations << ", \"energy_evaluations\": " << r.cvt.energy_evaluations
      << ", \"lloyd_fallbacks\": " << r.cvt.lloyd_fallbacks

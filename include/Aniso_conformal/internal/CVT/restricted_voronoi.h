@@ -61,12 +61,11 @@ inline Background_triangle make_background_triangle(const std::array<Eigen::Vect
   return T;
 }
 
-// indices of `points` sorted along a Morton curve: nearby triangles are processed together, which keeps
-// the nearest-site walks short and the memory accesses local
-inline std::vector<std::size_t> morton_order(const std::vector<Eigen::Vector2d>& points)
+// indices of `points` sorted along a Morton curve over the box [lo, hi]: nearby triangles are processed
+// together, which keeps the nearest-site walks short and the memory accesses local
+inline std::vector<std::size_t> morton_order(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& lo,
+                                             const Eigen::Vector2d& hi)
 {
-  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  for(const auto& p : points) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
   const Eigen::Vector2d ext = (hi - lo).cwiseMax(1e-300);
   std::vector<std::pair<std::uint64_t, std::size_t>> key(points.size());
   for(std::size_t i = 0; i < points.size(); ++i) {

@@ -116,10 +116,13 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
     if(a >= o + b || b >= o + a) return 0.0;
     return std::acos(std::max(-1.0, std::min(1.0, (a * a + b * b - o * o) / (2 * a * b))));
   };
-  // Intrinsic Delaunay flips for the lengths scaled by u: the new edge gets its length by Ptolemy's
-  // relation, which commutes with the scaling, so the flipped triangulation describes the same discrete
-  // conformal class and no triangle degenerates during the solve. Returns the number of flips.
-  auto make_delaunay = [&](const std::vector<double>& u) {
+  // Intrinsic Delaunay flips for the lengths scaled by u. The first pass (u = 0) flips the input to its
+  // intrinsic Delaunay triangulation with Euclidean lengths (law of cosines in the unfolded quad), which
+  // keeps the input metric; the conformal class is defined on that triangulation. During the solve the
+  // new edge gets its length by Ptolemy's relation, which commutes with the scaling, so the flipped
+  // triangulation stays in the same discrete conformal class and no triangle degenerates (Gillespie,
+  // Springborn and Crane 2021). Returns the number of flips.
+  auto make_delaunay = [&](const std::vector<double>& u, bool euclidean) {
     std::size_t flips = 0;
     const int nh = int(itri.number_of_halfedges());
     std::deque<int> queue;
@@ -142,7 +145,13 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
                    l_ca = itri.length(Intrinsic_triangulation::prev(h)), l_ad = itri.length(Intrinsic_triangulation::next(t)),
                    l_db = itri.length(Intrinsic_triangulation::prev(t));
       const int g = itri.flip(h);
-      itri.set_length(g, (l_ad * l_bc + l_db * l_ca) / l_ab);  // Ptolemy on the quad a, d, b, c
+      if(euclidean) {
+        const double a1 = std::acos(std::max(-1.0, std::min(1.0, (l_ab * l_ab + l_ca * l_ca - l_bc * l_bc) / (2 * l_ab * l_ca))));
+        const double a2 = std::acos(std::max(-1.0, std::min(1.0, (l_ab * l_ab + l_ad * l_ad - l_db * l_db) / (2 * l_ab * l_ad))));
+        itri.set_length(g, std::sqrt(std::max(0.0, l_ca * l_ca + l_ad * l_ad - 2 * l_ca * l_ad * std::cos(a1 + a2))));
+      } else {
+        itri.set_length(g, (l_ad * l_bc + l_db * l_ca) / l_ab);  // Ptolemy on the quad a, d, b, c
+      }
       ++flips;
       for(int e : {Intrinsic_triangulation::next(g), Intrinsic_triangulation::prev(g),
                    Intrinsic_triangulation::next(itri.twin(g)), Intrinsic_triangulation::prev(itri.twin(g))})
@@ -155,7 +164,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
   // angle sums and (optionally) the cotangent Laplacian at scales u, after the Delaunay flips
   bool connectivity_changed = false;
   auto evaluate = [&](const std::vector<double>& u, bool with_hessian, std::size_t& degenerate) {
-    if(make_delaunay(u) > 0) connectivity_changed = true;
+    if(make_delaunay(u, false) > 0) connectivity_changed = true;
     std::fill(angle_sum.begin(), angle_sum.end(), 0.0);
     triplets.clear();
     degenerate = 0;
@@ -188,6 +197,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   bool analysed = false;
   std::size_t degenerate = 0;
+  make_delaunay(sol.u, true);
   double residual = evaluate(sol.u, true, degenerate);
   std::size_t it = 0;
   for(; it < max_it && residual > tol; ++it) {

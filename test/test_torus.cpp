@@ -1,0 +1,377 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Closed genus-1 surfaces through the flat torus: the homology basis, the flat conformal metric and its
+// lattice (exact on a flat torus), the periodic CVT's integrals and dual, remesh() on the paper's Table 2
+// cyclide against the quality bar, the BGL entry point, and every error path.
+
+#define BOOST_TEST_MODULE Aniso_conformal_flat_torus
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/Tensor_field_metric.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/flat_torus_embedding.h>
+#include <Aniso_conformal/make_dupin_cyclide.h>
+#include <Aniso_conformal/remesh.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include "mesh_checks.h"
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+
+namespace AC = Aniso_conformal;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+
+namespace {
+
+const double pi = 3.14159265358979323846;
+
+// a background with the metric's edge lengths, flipped and split until valid (stages 1 and 2)
+template <typename Metric>
+AC::Intrinsic_triangulation background(const AC::Input_surface& s, const Metric& metric)
+{
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, metric));
+  AC::adjust_edge_lengths(t, s);
+  return t;
+}
+
+// angle sum of every vertex for the scaled lengths
+std::vector<double> angle_sums(const AC::Intrinsic_triangulation& t, const std::vector<double>& u)
+{
+  std::vector<double> sum(t.number_of_vertices(), 0.0);
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    bool deg = false;
+    const auto a = AC::internal::corner_angles(AC::internal::scaled_face_lengths(t, int(f), u), deg);
+    for(int k = 0; k < 3; ++k) sum[std::size_t(t.face_vertices(f)[k])] += a[k];
+  }
+  return sum;
+}
+
+// The output is a closed, connected, consistently oriented genus-1 2-manifold with n vertices
+void check_torus_output(const AC::Remeshed_surface& out, std::size_t n)
+{
+  BOOST_TEST(out.points.size() == n);
+  BOOST_TEST(out.faces.size() == 2 * n);
+  const test::Mesh_counts m = test::count_mesh(out.points, out.faces);
+  BOOST_TEST(m.boundary_edges == 0u);
+  BOOST_TEST(m.euler == 0);
+  // Input_surface checks manifoldness, orientation and connectivity
+  std::vector<AC::Input_surface::Face> faces(out.faces.begin(), out.faces.end());
+  BOOST_CHECK_NO_THROW(AC::Input_surface(out.points, faces));
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(tree_cotree_gives_two_generators_whose_loops_close)
+{
+  const AC::Input_surface s = AC::make_dupin_cyclide(12, 8);
+  const AC::Intrinsic_triangulation t(s, std::vector<Eigen::Matrix3d>(s.number_of_vertices(), Eigen::Matrix3d::Identity()));
+  const AC::internal::Tree_cotree tc = AC::internal::tree_cotree(t);
+  BOOST_TEST(tc.generators.size() == 2u);
+  std::size_t tree = 0, cotree = 0;
+  for(int h = 0; h < int(t.number_of_halfedges()); ++h)
+    if(t.is_edge_representative(h)) {
+      tree += tc.in_tree[std::size_t(h)];
+      cotree += tc.in_cotree[std::size_t(h)];
+      BOOST_TEST(!(tc.in_tree[std::size_t(h)] && tc.in_cotree[std::size_t(h)]));
+    }
+  BOOST_TEST(tree == t.number_of_vertices() - 1);
+  BOOST_TEST(cotree == t.number_of_faces() - 1);
+  for(int g : tc.generators) {
+    const std::vector<int> loop = AC::internal::generator_loop(t, tc, g);
+    BOOST_TEST(loop.front() == t.head(g));
+    BOOST_TEST(loop.back() == t.tail(g));
+    for(std::size_t i = 0; i + 1 < loop.size(); ++i) BOOST_TEST(t.find_halfedge(loop[i], loop[i + 1]) >= 0);
+  }
+  // a disk has no homology basis to find
+  const AC::Input_surface disk({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}, {{{0, 1, 2}}});
+  const AC::Intrinsic_triangulation td(disk, std::vector<Eigen::Matrix3d>(3, Eigen::Matrix3d::Identity()));
+  BOOST_CHECK_THROW(AC::internal::tree_cotree(td), AC::Invalid_input);
+}
+
+BOOST_AUTO_TEST_CASE(flat_torus_embedding_recovers_a_flat_lattice_exactly)
+{
+  // A grid on the torus with the edge lengths of the flat torus R^2 / (Z a0 + Z b0): the solve must
+  // leave u = 0 and give back the same lattice (up to a rotation and the reduction of the basis).
+  const std::size_t nu = 9, nv = 7;
+  const AC::Input_surface s = AC::make_dupin_cyclide(nu, nv);
+  AC::Intrinsic_triangulation t(s, std::vector<Eigen::Matrix3d>(s.number_of_vertices(), Eigen::Matrix3d::Identity()));
+  const Eigen::Vector2d a0(1.0, 0.0), b0(0.35, 0.8);
+  for(int h = 0; h < int(t.number_of_halfedges()); ++h) {
+    const int p = t.tail(h), q = t.head(h);
+    // grid steps between the two ends, taken modulo the grid (neighbours differ by at most one step)
+    auto step = [](int d, int n) { return d > n / 2 ? d - n : (d < -n / 2 ? d + n : d); };
+    const int di = step(q / int(nv) - p / int(nv), int(nu)), dj = step(q % int(nv) - p % int(nv), int(nv));
+    t.set_length(h, (double(di) / nu * a0 + double(dj) / nv * b0).norm());
+  }
+  const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
+  for(double u : emb.u) BOOST_TEST(std::abs(u) < 1e-9);
+  const Eigen::Vector2d a = emb.lattice[0], b = emb.lattice[1];
+  Eigen::Vector2d ra = a0, rb = b0;
+  AC::internal::reduce_lattice_basis(ra, rb);
+  BOOST_TEST(std::abs(a.norm() - ra.norm()) < 1e-9);
+  BOOST_TEST(std::abs(b.norm() - rb.norm()) < 1e-9);
+  BOOST_TEST(std::abs(a.dot(b) - ra.dot(rb)) < 1e-9);
+  BOOST_TEST(a.x() * b.y() - a.y() * b.x() > 0);
+  BOOST_TEST(emb.lattice_error < 1e-9);
+  for(double cf : emb.conformal_factor) BOOST_TEST(std::abs(cf - 1) < 1e-9);
+  // the lattice is reduced
+  BOOST_TEST(a.norm() <= b.norm() + 1e-12);
+  BOOST_TEST(std::abs(a.dot(b)) <= 0.5 * a.squaredNorm() + 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(flat_torus_embedding_of_a_curved_cyclide_is_flat_and_consistent)
+{
+  const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
+  AC::Curvature_metric_options co;
+  co.stretch_max = 10;
+  AC::Intrinsic_triangulation t = background(s, AC::Curvature_metric(s, co));
+  const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t, AC::parameters::conformal_tolerance(1e-10));
+  BOOST_TEST(emb.residual <= 1e-10);
+  BOOST_TEST(emb.u[0] == 0.0);
+  for(double sum : angle_sums(t, emb.u)) BOOST_TEST(std::abs(sum - 2 * pi) < 1e-8);
+  // the cell's area is the area of the flat metric, and every face is laid out counterclockwise
+  double area = 0;
+  for(const auto& c : emb.corner_uv) {
+    const Eigen::Vector2d e1 = c[1] - c[0], e2 = c[2] - c[0];
+    const double a = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+    BOOST_TEST(a > 0);
+    area += a;
+  }
+  const double det = emb.lattice[0].x() * emb.lattice[1].y() - emb.lattice[0].y() * emb.lattice[1].x();
+  BOOST_TEST(std::abs(det - area) < 1e-8 * area);
+  BOOST_TEST(emb.lattice_error < 1e-6);
+  for(const auto& loop : emb.homology_basis) BOOST_TEST(loop.size() >= 3u);
+  for(double cf : emb.conformal_factor) BOOST_TEST((cf > 0 && std::isfinite(cf)));
+  // the Newton bound is reported with the residual reached
+  AC::Intrinsic_triangulation t2 = background(s, AC::Curvature_metric(s, co));
+  try {
+    AC::flat_torus_embedding(t2, AC::parameters::max_conformal_iterations(1u).conformal_tolerance(1e-15));
+    BOOST_FAIL("the bound was not enforced");
+  } catch(const AC::Convergence_failure& e) {
+    BOOST_TEST(std::string(e.what()).find("flat torus embedding") != std::string::npos);
+    BOOST_TEST(e.residual() > 0);
+  }
+  // wrong topology
+  const AC::Input_surface disk({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}, {{{0, 1, 2}}});
+  AC::Intrinsic_triangulation td = background(disk, AC::Uniform_metric());
+  BOOST_CHECK_THROW(AC::flat_torus_embedding(td), AC::Invalid_input);
+}
+
+BOOST_AUTO_TEST_CASE(periodic_cvt_integrates_exactly_and_its_dual_is_a_torus)
+{
+  const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
+  AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
+  const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
+  const AC::Euclidean_periodic_domain_traits domain(t, emb, 2);
+  const std::size_t n = 150;
+  std::vector<Eigen::Vector2d> sites = domain.initial_sites(n, 3);
+  for(const auto& p : sites) {
+    const Eigen::Vector2d st = domain.lattice_coordinates(p);
+    BOOST_TEST((st.x() >= 0 && st.x() < 1 && st.y() >= 0 && st.y() < 1));
+  }
+  std::vector<AC::Euclidean_periodic_domain_traits::Cell> cells;
+  domain.integrate(sites, cells);
+  double mass = 0;
+  for(const auto& c : cells) {
+    BOOST_TEST(c.mass > 0);
+    mass += c.mass;
+  }
+  BOOST_TEST(std::abs(mass - domain.total_mass()) < 1e-9 * domain.total_mass());
+  // a site's class, not its translate, matters: translating a site by a lattice vector changes nothing
+  // but moves its centroid along
+  std::vector<Eigen::Vector2d> moved = sites;
+  moved[7] += 2.0 * domain.lattice()[0] - domain.lattice()[1];
+  std::vector<AC::Euclidean_periodic_domain_traits::Cell> cells2;
+  domain.integrate(moved, cells2);
+  BOOST_TEST(std::abs(cells2[7].mass - cells[7].mass) < 1e-12 * mass);
+  BOOST_TEST(std::abs(cells2[7].energy - cells[7].energy) < 1e-12 * mass);
+  BOOST_TEST(((cells2[7].centroid - moved[7]) - (cells[7].centroid - sites[7])).norm() < 1e-9);
+  // the gradient 2 m (x - c) matches a central difference of the energy
+  auto energy = [&](const std::vector<Eigen::Vector2d>& x) {
+    std::vector<AC::Euclidean_periodic_domain_traits::Cell> c;
+    domain.integrate(x, c);
+    double e = 0;
+    for(const auto& cell : c) e += cell.energy;
+    return e;
+  };
+  const double h = 1e-6 * std::sqrt(domain.area());
+  for(int d = 0; d < 2; ++d) {
+    std::vector<Eigen::Vector2d> xp = sites, xm = sites;
+    xp[11][d] += h;
+    xm[11][d] -= h;
+    const double fd = (energy(xp) - energy(xm)) / (2 * h);
+    const double g = 2 * cells[11].mass * (sites[11][d] - cells[11].centroid[d]);
+    BOOST_TEST(std::abs(fd - g) < 1e-4 * (std::abs(g) + cells[11].mass * std::sqrt(domain.area() / n)));
+  }
+  // Lloyd and L-BFGS decrease the energy
+  std::vector<Eigen::Vector2d> x;
+  for(AC::Cvt_method method : {AC::Cvt_method::LLOYD, AC::Cvt_method::LBFGS}) {
+    x = sites;
+    const AC::Cvt_report rep =
+        AC::weighted_centroidal_Voronoi_tessellation(domain, x, 0, AC::parameters::number_of_iterations(20u).cvt_method(method));
+    BOOST_TEST(rep.energy.back() < rep.energy.front());
+    BOOST_TEST(rep.iterations == 20u);
+  }
+  // the dual of the optimised sites is the periodic Delaunay triangulation: 2 n triangles forming a torus
+  sites = x;
+  const auto tris = domain.dual_triangles(sites);
+  BOOST_TEST(tris.size() == 2 * n);
+  std::vector<Eigen::Vector3d> pts;
+  for(const auto& p : sites) pts.emplace_back(p.x(), p.y(), 0.0);
+  const test::Mesh_counts m = test::count_mesh(pts, tris);
+  BOOST_TEST(m.boundary_edges == 0u);
+  BOOST_TEST(m.euler == 0);
+  // coincident sites are refused
+  std::vector<Eigen::Vector2d> twins = sites;
+  twins[1] = twins[0] + domain.lattice()[1];
+  BOOST_CHECK_THROW(domain.dual_triangles(twins), AC::Convergence_failure);
+  // every site maps back onto the background
+  int face = -1;
+  Eigen::Vector3d bary;
+  for(const auto& p : sites) BOOST_TEST(domain.background_location(0, p + domain.lattice()[0], face, bary));
+  BOOST_TEST(!domain.background_location(0, Eigen::Vector2d(std::numeric_limits<double>::quiet_NaN(), 0), face, bary));
+}
+
+BOOST_AUTO_TEST_CASE(table2_cyclide_meets_the_quality_bar)
+{
+  // the paper's Table 2 / Fig. 11 case: 25920 vertices, curvature metric with stretch up to 29, 8000 vertices
+  const AC::Input_surface s = AC::make_dupin_cyclide(180, 144);
+  const std::vector<Eigen::Vector3d> points_before = s.points();
+  AC::Curvature_metric_options co;
+  co.stretch_max = 29;
+  const AC::Curvature_metric metric(s, co);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(std::size_t(8000)));
+  check_torus_output(out, 8000);
+  BOOST_TEST(r.domain == "flat-torus");
+  const AC::Quality_report& q = r.quality;
+  BOOST_TEST_MESSAGE("Table 2: G_min " << q.G_min << " G_avg " << q.G_avg << " theta_min " << q.theta_min << " %<30 "
+                                       << q.percent_below_30 << " Hausdorff " << r.hausdorff_distance_relative);
+  BOOST_TEST(q.G_avg >= 0.90);
+  BOOST_TEST(q.theta_min >= 20.0);
+  BOOST_TEST(q.percent_below_30 <= 0.5);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.hausdorff_distance_relative < 0.005);
+  BOOST_TEST(r.hausdorff_distance_relative > 0.0);
+  // every vertex on the input: its barycentric position is the vertex
+  for(const auto& sp : out.surface_points) {
+    const Eigen::Vector3d x = sp.barycentric[0] * s.points()[sp.vertices[0]] + sp.barycentric[1] * s.points()[sp.vertices[1]] +
+                              sp.barycentric[2] * s.points()[sp.vertices[2]];
+    BOOST_TEST((x - sp.position).norm() < 1e-9);
+  }
+  BOOST_TEST((s.points() == points_before));
+}
+
+BOOST_AUTO_TEST_CASE(high_stretch_embeds_with_intrinsic_flips)
+{
+  // stretch 50, beyond the paper's 29: the flips keep the conformal solve valid
+  const AC::Input_surface s = AC::make_dupin_cyclide(90, 72);
+  AC::Curvature_metric_options co;
+  co.stretch_max = 50;
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out =
+      AC::remesh(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1500)).random_seed(4u));
+  check_torus_output(out, 1500);
+  BOOST_TEST(r.conformal_flips > 0u);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+  BOOST_TEST(r.quality.theta_min >= 15.0);
+}
+
+BOOST_AUTO_TEST_CASE(surface_mesh_entry_point_and_determinism)
+{
+  const AC::Input_surface s = AC::make_dupin_cyclide(48, 32);
+  CGAL::Surface_mesh<K::Point_3> in, out, out2;
+  std::vector<CGAL::Surface_mesh<K::Point_3>::Vertex_index> v;
+  for(const auto& p : s.points()) v.push_back(in.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
+  for(const auto& f : s.faces()) in.add_face(v[f[0]], v[f[1]], v[f[2]]);
+  const AC::Remeshing_result r = AC::remesh(in, AC::Uniform_metric(), out, AC::parameters::number_of_vertices(std::size_t(400)));
+  BOOST_TEST(num_vertices(out) == 400u);
+  BOOST_TEST(CGAL::is_closed(out));
+  BOOST_TEST(CGAL::is_triangle_mesh(out));
+  BOOST_TEST(int(num_vertices(out)) - int(num_edges(out)) + int(num_faces(out)) == 0);
+  BOOST_TEST(r.quality.G_avg > 0.9);
+  AC::remesh(in, AC::Uniform_metric(), out2, AC::parameters::number_of_vertices(std::size_t(400)));
+  bool same = true;
+  for(auto vd : vertices(out)) same = same && out.point(vd) == out2.point(vd);
+  BOOST_TEST(same);
+}
+
+BOOST_AUTO_TEST_CASE(bad_genus_one_inputs_name_the_problem)
+{
+  const AC::Input_surface s = AC::make_dupin_cyclide(24, 16);
+  auto message_of = [](auto&& f) -> std::string {
+    try {
+      f();
+    } catch(const AC::Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  auto remesh_with = [&](const AC::Input_surface& in, std::size_t n, AC::Parametric_domain d) {
+    AC::Remeshing_result r;
+    AC::remesh(in, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).parametric_domain(d));
+  };
+  // a domain that does not fit the topology
+  std::string m = message_of([&] { remesh_with(s, 100, AC::Parametric_domain::PLANE); });
+  BOOST_TEST(m.find("plane domain does not fit") != std::string::npos);
+  BOOST_TEST(m.find("genus 1") != std::string::npos);
+  const AC::Input_surface disk({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(1, 1, 0)},
+                               {{{0, 1, 2}}, {{1, 3, 2}}});
+  m = message_of([&] { remesh_with(disk, 3, AC::Parametric_domain::FLAT_TORUS); });
+  BOOST_TEST(m.find("flat-torus domain does not fit") != std::string::npos);
+  // genus 1 with a boundary: one face removed
+  std::vector<AC::Input_surface::Face> holed(s.faces().begin() + 1, s.faces().end());
+  m = message_of([&] { remesh_with(AC::Input_surface(s.points(), holed), 100, AC::Parametric_domain::AUTOMATIC); });
+  BOOST_TEST(m.find("genus 1 with 1 boundary loops") != std::string::npos);
+  // too few vertices for a torus
+  m = message_of([&] { remesh_with(s, 6, AC::Parametric_domain::AUTOMATIC); });
+  BOOST_TEST(m.find("at least 7") != std::string::npos);
+  // two disjoint tori, a non-manifold vertex (two tori glued at one vertex)
+  std::vector<Eigen::Vector3d> two = s.points();
+  std::vector<AC::Input_surface::Face> two_faces = s.faces();
+  const std::size_t nv = s.number_of_vertices();
+  for(const auto& p : s.points()) two.push_back(p + Eigen::Vector3d(5, 0, 0));
+  for(const auto& f : s.faces()) two_faces.push_back({{f[0] + nv, f[1] + nv, f[2] + nv}});
+  m = message_of([&] { AC::Input_surface(two, two_faces); });
+  BOOST_TEST(m.find("2 connected components") != std::string::npos);
+  // the point reflection of the torus through its vertex 0 touches it there only
+  std::vector<Eigen::Vector3d> glued_points = s.points();
+  std::vector<AC::Input_surface::Face> glued = s.faces();
+  for(std::size_t i = 1; i < nv; ++i) glued_points.push_back(2 * s.points()[0] - s.points()[i]);
+  for(const auto& f : s.faces()) {
+    AC::Input_surface::Face g;
+    for(int k = 0; k < 3; ++k) g[std::size_t(k)] = f[std::size_t(k)] == 0 ? 0 : f[std::size_t(k)] + nv - 1;
+    glued.push_back({{g[0], g[2], g[1]}});  // the reflection reverses the orientation
+  }
+  m = message_of([&] { AC::Input_surface(glued_points, glued); });
+  BOOST_TEST(m.find("non-manifold") != std::string::npos);
+  // a NaN metric
+  std::vector<Eigen::Matrix3d> nan_field(nv, Eigen::Matrix3d::Identity());
+  nan_field[5](0, 0) = std::numeric_limits<double>::quiet_NaN();
+  m = message_of([&] {
+    AC::Remeshing_result r;
+    AC::remesh(s, AC::Tensor_field_metric(nan_field), r, AC::parameters::number_of_vertices(std::size_t(100)));
+  });
+  BOOST_TEST(m.find("vertex 5") != std::string::npos);
+  // a metric too wild for the background: a 1e8 jump between neighbouring vertices, a tight Newton bound
+  std::vector<Eigen::Matrix3d> wild(nv, Eigen::Matrix3d::Identity());
+  for(std::size_t i = 0; i < nv; i += 2) wild[i] *= 1e8;
+  try {
+    AC::Remeshing_result r;
+    AC::remesh(s, AC::Tensor_field_metric(wild), r, AC::parameters::number_of_vertices(std::size_t(100)).max_conformal_iterations(2u));
+    BOOST_FAIL("a wild metric with 2 Newton iterations was accepted");
+  } catch(const AC::Convergence_failure& e) {
+    BOOST_TEST_MESSAGE("wild metric: " << e.what());
+    BOOST_TEST(e.residual() > 0);
+  }
+}
