@@ -29,15 +29,16 @@ struct Arguments {
   }
 };
 
-/// remeshes, reports and writes the pictures; `bar` prints the quality bar check (Fig. 6 and 7)
-template <typename Metric>
-int reproduce(const std::string& name, const std::string& caption, const Aniso_conformal::Input_surface& background,
-              const Metric& metric, const Arguments& a, bool bar)
+/// the named parameters every figure uses: `n` output vertices, 100 CVT iterations, seed 0
+inline auto figure_parameters(std::size_t n)
+{
+  return Aniso_conformal::parameters::number_of_vertices(n).number_of_iterations(100u).random_seed(0u);
+}
+
+/// prints the sizes, the quality in the metric and the time of each stage
+inline void print_report(const std::string& caption, const Aniso_conformal::Remeshing_result& r)
 {
   namespace AC = Aniso_conformal;
-  AC::Remeshing_result r;
-  const AC::Remeshed_surface out =
-      AC::remesh(background, metric, r, AC::parameters::number_of_vertices(a.vertices).number_of_iterations(100u).random_seed(0u));
   const AC::Quality_report& q = r.quality;
   std::printf("%s: %zu vertices, %zu triangles (background %zu vertices, %zu flips, %zu splits)\n", caption.c_str(),
               q.number_of_vertices, q.number_of_triangles, r.background_vertices, r.adjustment.flips, r.adjustment.splits);
@@ -46,6 +47,32 @@ int reproduce(const std::string& name, const std::string& caption, const Aniso_c
   std::printf("seconds:");
   for(int s = 0; s < AC::number_of_stages; ++s) std::printf(" %s %.3f", AC::stage_name(AC::Stage(s)), r.seconds[s]);
   std::printf(" (total %.3f)\n", r.total_seconds());
+}
+
+/// the five quality figures of the paper's tables
+struct Paper_quality {
+  double G_min, G_avg, theta_min, theta_avg, percent_below_30;
+};
+
+/// prints ours next to the paper's
+inline void print_paper_comparison(const Aniso_conformal::Quality_report& q, const Paper_quality& paper)
+{
+  std::printf("%-7s %8s %8s %10s %10s %8s\n", "", "G_min", "G_avg", "theta_min", "theta_avg", "%<30");
+  std::printf("%-7s %8.4f %8.4f %10.2f %10.2f %8.4f\n", "ours", q.G_min, q.G_avg, q.theta_min, q.theta_avg, q.percent_below_30);
+  std::printf("%-7s %8.4f %8.4f %10.2f %10.2f %8.4f\n", "paper", paper.G_min, paper.G_avg, paper.theta_min, paper.theta_avg,
+              paper.percent_below_30);
+}
+
+/// remeshes, reports and writes the pictures; `bar` prints the quality bar check (Fig. 6 and 7)
+template <typename Metric>
+int reproduce(const std::string& name, const std::string& caption, const Aniso_conformal::Input_surface& background,
+              const Metric& metric, const Arguments& a, bool bar)
+{
+  namespace AC = Aniso_conformal;
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh(background, metric, r, figure_parameters(a.vertices));
+  const AC::Quality_report& q = r.quality;
+  print_report(caption, r);
   if(bar) {
     const bool ok = q.G_avg >= 0.85 && q.theta_min >= 10 && q.percent_below_30 <= 5 && r.inverted_triangles == 0;
     std::printf("quality bar (G_avg >= 0.85, theta_min >= 10, %%<30 <= 5, no inverted triangle): %s\n", ok ? "met" : "NOT met");

@@ -6,12 +6,15 @@
 
 #include <Aniso_conformal/Exceptions.h>
 
-#include <Eigen/Core>
+#include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -21,20 +24,41 @@ namespace Aniso_conformal {
 namespace IO {
 
 namespace internal {
-// red (low) -> yellow -> green (high)
-inline std::string ramp(double t)
+// red (low) -> yellow -> green (high), as 0..255 components
+inline std::array<int, 3> ramp_rgb(double t)
 {
   t = std::min(1.0, std::max(0.0, t));
   const int r = t < 0.5 ? 230 : int(230 * (1 - t) * 2), g = t < 0.5 ? int(60 + 170 * t * 2) : 200;
+  return {{std::max(0, r), std::min(255, g), 60}};
+}
+inline std::string hex_colour(const std::array<int, 3>& c)
+{
   char buf[16];
-  std::snprintf(buf, sizeof(buf), "#%02x%02x%02x", std::max(0, r), std::min(255, g), 60);
+  std::snprintf(buf, sizeof(buf), "#%02x%02x%02x", c[0], c[1], c[2]);
   return buf;
 }
+// red (low) -> yellow -> green (high)
+inline std::string ramp(double t) { return hex_colour(ramp_rgb(t)); }
 inline std::string escape(const std::string& s)
 {
   std::string o;
   for(char c : s) o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
   return o;
+}
+// the colour legend: ten boxes of the ramp from x = left to left + 300 at height y, vmin and vmax at its ends
+inline void write_legend(std::ostream& out, double left, double y, double vmin, double vmax)
+{
+  char buf[256];
+  for(int i = 0; i < 10; ++i) {
+    std::snprintf(buf, sizeof(buf), "<rect x=\"%.0f\" y=\"%.0f\" width=\"30\" height=\"12\" fill=\"%s\"/>\n", left + 30 * i, y,
+                  ramp((i + 0.5) / 10).c_str());
+    out << buf;
+  }
+  std::snprintf(buf, sizeof(buf),
+                "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"end\">%.2f</text>\n"
+                "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%.2f</text>\n",
+                left - 5, y + 11, vmin, left + 305, y + 11, vmax);
+  out << buf;
 }
 } // namespace internal
 
@@ -71,16 +95,8 @@ inline void write_svg(const std::string& path, const std::vector<Eigen::Vector3d
     out << "\" fill=\"" << internal::ramp(v) << "\"/>\n";
   }
   out << "</g>\n";
-  for(int i = 0; i < 10; ++i) {  // legend
-    std::snprintf(buf, sizeof(buf), "<rect x=\"%d\" y=\"%.0f\" width=\"30\" height=\"12\" fill=\"%s\"/>\n", 400 + 30 * i,
-                  H + top + 18, internal::ramp((i + 0.5) / 10).c_str());
-    out << buf;
-  }
-  std::snprintf(buf, sizeof(buf),
-                "<text x=\"395\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"end\">%.2f</text>\n"
-                "<text x=\"705\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%.2f</text>\n",
-                H + top + 29, vmin, H + top + 29, vmax);
-  out << buf << "</svg>\n";
+  internal::write_legend(out, 400, H + top + 18, vmin, vmax);
+  out << "</svg>\n";
   if(!out) throw Invalid_input("cannot write " + path);
 }
 
@@ -118,6 +134,227 @@ inline void write_histogram_svg(const std::string& path, const std::vector<doubl
                 "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\">angle (degrees), %.0f angles; peak bin %.1f %%</text>\n",
                 left + W / 2, top + H + 36, total, total > 0 ? 100 * peak / total : 0.0);
   out << buf << "<line x1=\"" << left << "\" y1=\"" << top + H << "\" x2=\"" << left + W << "\" y2=\"" << top + H << "\" stroke=\"black\"/>\n</svg>\n";
+  if(!out) throw Invalid_input("cannot write " + path);
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
+ * draws a Voronoi tessellation of the flat torus `R^2 / L` (the paper's Fig.\ 11 (a)) as SVG: the
+ * fundamental cell `{s a + t b : 0 <= s, t < 1}` of the lattice `L` spanned by `lattice = (a, b)`,
+ * outlined, tiled by the Voronoi cells drawn with thin lines, and the sites as dots sized after their
+ * cells (y up), with the lattice basis written below.
+ *
+ * The cells are those given by `Euclidean_periodic_domain_traits::voronoi_cells()`: one polygon per site,
+ * around the site wrapped into the fundamental cell, which may stick out of it. Each cell is drawn with
+ * every lattice translate that meets the fundamental cell, and the drawing is clipped to it, so the cell
+ * picture inside the parallelogram is complete. Empty polygons are skipped.
+ *
+ * \param path the SVG file to write
+ * \param lattice the lattice basis `(a, b)`, `det(a, b) != 0`
+ * \param sites the sites, wrapped into the fundamental cell
+ * \param cells the Voronoi cell of each site (the same order as `sites`)
+ * \param values a value per site (for example the cell's mass) colouring its cell on the red-yellow-green
+ *        ramp from the smallest to the largest value, shown in a legend; empty for uncoloured cells
+ * \param title a line of text above the picture
+ * \throws Invalid_input if the lattice is degenerate, `cells` and `sites` (or a non-empty `values`) differ
+ *         in size, or the file cannot be written
+ */
+inline void write_periodic_cvt_svg(const std::string& path, const std::array<Eigen::Vector2d, 2>& lattice,
+                                   const std::vector<Eigen::Vector2d>& sites,
+                                   const std::vector<std::vector<Eigen::Vector2d>>& cells, const std::vector<double>& values,
+                                   const std::string& title)
+{
+  const Eigen::Vector2d a = lattice[0], b = lattice[1];
+  Eigen::Matrix2d basis;
+  basis.col(0) = a;
+  basis.col(1) = b;
+  const double det = basis.determinant();
+  if(!std::isfinite(det) || std::abs(det) <= 1e-300) throw Invalid_input("write_periodic_cvt_svg(): the lattice basis is degenerate");
+  if(cells.size() != sites.size())
+    throw Invalid_input("write_periodic_cvt_svg(): " + std::to_string(cells.size()) + " cells for " + std::to_string(sites.size()) + " sites");
+  if(!values.empty() && values.size() != sites.size())
+    throw Invalid_input("write_periodic_cvt_svg(): " + std::to_string(values.size()) + " values for " + std::to_string(sites.size()) + " sites");
+  const Eigen::Matrix2d inverse = basis.inverse();
+
+  // the fundamental cell fitted into a 900 x 900 box, y up
+  const std::array<Eigen::Vector2d, 4> corner = {{Eigen::Vector2d::Zero(), a, Eigen::Vector2d(a + b), b}};
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for(const auto& p : corner) { x0 = std::min(x0, p.x()); y0 = std::min(y0, p.y()); x1 = std::max(x1, p.x()); y1 = std::max(y1, p.y()); }
+  const double box = 900, scale = box / std::max(x1 - x0, y1 - y0), W = (x1 - x0) * scale, H = (y1 - y0) * scale;
+  const double left = 20, top = 40, bottom = 50, width = std::max(W + 2 * left, 760.0), height = H + top + bottom;
+  char buf[256];
+  auto xy = [&](const Eigen::Vector2d& p) {
+    std::snprintf(buf, sizeof(buf), "%.2f,%.2f", left + (p.x() - x0) * scale, top + (y1 - p.y()) * scale);
+    return std::string(buf);
+  };
+
+  // cell polygons grouped by colour (20 classes of the value), each with the translates meeting the cell
+  double vmin = 1e300, vmax = -1e300;
+  for(double v : values)
+    if(std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
+  if(vmin > vmax) vmin = vmax = 0;
+  const int classes = values.empty() ? 1 : 20;
+  std::vector<std::string> paths(static_cast<std::size_t>(classes));
+  for(std::size_t i = 0; i < cells.size(); ++i) {
+    const std::vector<Eigen::Vector2d>& cell = cells[i];
+    if(cell.empty()) continue;
+    double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
+    for(const auto& p : cell) {
+      const Eigen::Vector2d st = inverse * p;
+      s0 = std::min(s0, st.x()); s1 = std::max(s1, st.x()); t0 = std::min(t0, st.y()); t1 = std::max(t1, st.y());
+    }
+    if(!(std::isfinite(s0) && std::isfinite(s1) && std::isfinite(t0) && std::isfinite(t1))) continue;
+    int c = 0;
+    if(!values.empty() && vmax > vmin && std::isfinite(values[i]))
+      c = std::min(classes - 1, std::max(0, int((values[i] - vmin) / (vmax - vmin) * classes)));
+    std::string& d = paths[std::size_t(c)];
+    for(int di = int(std::floor(-s1)); di <= int(std::ceil(1 - s0)); ++di)
+      for(int dj = int(std::floor(-t1)); dj <= int(std::ceil(1 - t0)); ++dj) {
+        if(!(s0 + di < 1 && s1 + di > 0 && t0 + dj < 1 && t1 + dj > 0)) continue;
+        const Eigen::Vector2d shift = double(di) * a + double(dj) * b;
+        for(std::size_t k = 0; k < cell.size(); ++k) d += (k == 0 ? "M" : k == 1 ? "L" : " ") + xy(cell[k] + shift);
+        d += "Z";
+      }
+  }
+
+  std::ofstream out(path);
+  if(!out) throw Invalid_input("cannot write " + path);
+  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
+                width, height, width, height);
+  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
+  std::string outline;
+  for(int k = 0; k < 4; ++k) outline += (k ? " " : "") + xy(corner[std::size_t(k)]);
+  out << "<defs><clipPath id=\"fundamental_cell\"><polygon points=\"" << outline << "\"/></clipPath></defs>\n";
+  out << "<g clip-path=\"url(#fundamental_cell)\" stroke=\"#333\" stroke-width=\"0.25\" stroke-linejoin=\"round\">\n";
+  for(int c = 0; c < classes; ++c) {
+    if(paths[std::size_t(c)].empty()) continue;
+    out << "<path fill=\"" << (values.empty() ? std::string("#eef2f8") : internal::ramp((c + 0.5) / classes)) << "\" d=\""
+        << paths[std::size_t(c)] << "\"/>\n";
+  }
+  out << "</g>\n";
+  // the sites as dots (zero-length segments with round caps) whose size follows their cell's, in classes of 0.1 px
+  const double spacing = std::sqrt(std::abs(det) / double(std::max<std::size_t>(1, sites.size()))) * scale;
+  std::map<int, std::string> dots;
+  for(std::size_t i = 0; i < sites.size(); ++i) {
+    if(!sites[i].allFinite()) continue;
+    double area = 0;
+    const std::vector<Eigen::Vector2d>& cell = cells[i];
+    for(std::size_t k = 0; k < cell.size(); ++k) {
+      const Eigen::Vector2d& p = cell[k];
+      const Eigen::Vector2d& q = cell[(k + 1) % cell.size()];
+      area += p.x() * q.y() - p.y() * q.x();
+    }
+    const double size = area != 0 && std::isfinite(area) ? std::sqrt(std::abs(area) / 2) * scale : spacing;
+    dots[int(std::lround(10 * std::min(3.5, std::max(0.25, 0.3 * size))))] += "M" + xy(sites[i]) + "h0";
+  }
+  for(const auto& d : dots) {
+    std::snprintf(buf, sizeof(buf), "<path fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-width=\"%.1f\" d=\"", d.first / 10.0);
+    out << buf << d.second << "\"/>\n";
+  }
+  out << "<polygon points=\"" << outline << "\" fill=\"none\" stroke=\"black\" stroke-width=\"1.5\"/>\n";
+  std::snprintf(buf, sizeof(buf),
+                "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%zu sites; a = (%.3g, %.3g), b = (%.3g, %.3g)</text>\n",
+                left, H + top + 29, sites.size(), a.x(), a.y(), b.x(), b.y());
+  out << buf;
+  if(!values.empty()) internal::write_legend(out, width - 360, H + top + 18, vmin, vmax);
+  out << "</svg>\n";
+  if(!out) throw Invalid_input("cannot write " + path);
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
+ * draws a closed surface in 3D (the paper's Fig.\ 11 (c)) as SVG: an orthographic view along
+ * `view_direction`, back faces culled, the other triangles painted from the farthest to the nearest
+ * (sorted by the depth of their centroids), each filled by its value in `face_values` on a red-yellow-green
+ * ramp from `vmin` to `vmax` shaded by the Lambert factor `|n.l|` of a light above the viewer's left
+ * shoulder, with thin edges, a legend and a title.
+ *
+ * The triangles must be oriented outward (counterclockwise seen from outside). The picture's up direction
+ * is the z axis projected on the view plane, or the y axis when the view is within 18 degrees of the z
+ * axis, so that the default view shows a planar mesh as `write_svg()` does.
+ *
+ * \param path the SVG file to write
+ * \param points the vertex positions
+ * \param faces the triangles, indices into `points`
+ * \param face_values a value per triangle (triangles without one are drawn as `vmax`)
+ * \param vmin the value drawn red
+ * \param vmax the value drawn green
+ * \param title a line of text above the picture
+ * \param view_direction the direction from the surface towards the viewer
+ * \throws Invalid_input if `view_direction` is zero or not finite, a face has an index out of range, or the
+ *         file cannot be written
+ */
+inline void write_surface_svg(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+                              const std::vector<std::array<std::size_t, 3>>& faces, const std::vector<double>& face_values,
+                              double vmin, double vmax, const std::string& title,
+                              const Eigen::Vector3d& view_direction = Eigen::Vector3d(0, 0, 1))
+{
+  if(!view_direction.allFinite() || !(view_direction.norm() > 0))
+    throw Invalid_input("write_surface_svg(): the view direction must be finite and non-zero");
+  for(const auto& f : faces)
+    for(std::size_t v : f)
+      if(v >= points.size())
+        throw Invalid_input("write_surface_svg(): a face has vertex index " + std::to_string(v) + " but there are " +
+                            std::to_string(points.size()) + " points");
+  // the view frame (u right, v up, w towards the viewer) and the light
+  const Eigen::Vector3d w = view_direction.normalized();
+  const Eigen::Vector3d up = std::abs(w.z()) < 0.95 ? Eigen::Vector3d(0, 0, 1) : Eigen::Vector3d(0, 1, 0);
+  const Eigen::Vector3d u = up.cross(w).normalized(), v = w.cross(u);
+  const Eigen::Vector3d light = (w + 0.6 * v - 0.5 * u).normalized();
+
+  struct Visible {
+    double depth;
+    std::size_t face;
+    double shade;
+  };
+  std::vector<Visible> visible;
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for(std::size_t f = 0; f < faces.size(); ++f) {
+    const Eigen::Vector3d& p = points[faces[f][0]];
+    const Eigen::Vector3d& q = points[faces[f][1]];
+    const Eigen::Vector3d& r = points[faces[f][2]];
+    const Eigen::Vector3d n = (q - p).cross(r - p);
+    const double len = n.norm();
+    if(!(len > 0) || !(n.dot(w) > 0)) continue;  // degenerate or facing away
+    visible.push_back({(p + q + r).dot(w) / 3, f, std::abs(n.dot(light)) / len});
+    for(const Eigen::Vector3d* x : {&p, &q, &r}) {
+      const double px = x->dot(u), py = x->dot(v);
+      x0 = std::min(x0, px); x1 = std::max(x1, px); y0 = std::min(y0, py); y1 = std::max(y1, py);
+    }
+  }
+  if(visible.empty()) { x0 = y0 = 0; x1 = y1 = 1; }
+  std::stable_sort(visible.begin(), visible.end(), [](const Visible& l, const Visible& r) { return l.depth < r.depth; });
+
+  const double box = 800, scale = box / std::max({1e-300, x1 - x0, y1 - y0}), W = (x1 - x0) * scale, H = (y1 - y0) * scale;
+  const double left = 20, top = 40, bottom = 50, width = std::max(W + 2 * left, 760.0), height = H + top + bottom;
+  const double offset = left + (width - 2 * left - W) / 2;  // centred
+  std::ofstream out(path);
+  if(!out) throw Invalid_input("cannot write " + path);
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
+                width, height, width, height);
+  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
+  out << "<g stroke=\"#222\" stroke-opacity=\"0.45\" stroke-width=\"0.25\" stroke-linejoin=\"round\">\n";
+  for(const Visible& t : visible) {
+    const double value =
+        t.face < face_values.size() ? (face_values[t.face] - vmin) / std::max(1e-300, vmax - vmin) : 1.0;
+    std::array<int, 3> rgb = internal::ramp_rgb(value);
+    const double shade = 0.25 + 0.75 * t.shade;
+    for(int& c : rgb) c = std::min(255, std::max(0, int(c * shade + 0.5)));
+    out << "<path d=\"";
+    for(int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& p = points[faces[t.face][std::size_t(k)]];
+      std::snprintf(buf, sizeof(buf), "%s%.1f,%.1f", k == 0 ? "M" : k == 1 ? "L" : " ", offset + (p.dot(u) - x0) * scale,
+                    top + (y1 - p.dot(v)) * scale);
+      out << buf;
+    }
+    out << "Z\" fill=\"" << internal::hex_colour(rgb) << "\"/>\n";
+  }
+  out << "</g>\n";
+  internal::write_legend(out, width - 360, H + top + 18, vmin, vmax);
+  out << "</svg>\n";
   if(!out) throw Invalid_input("cannot write " + path);
 }
 
