@@ -98,14 +98,15 @@ Case image_case(const std::string& name, const std::string& fig, const std::stri
 // A closed surface with the curvature metric; the metric's construction (curvatures, smoothing) is timed
 // as part of the metric stage.
 Case surface_case(const std::string& name, const std::string& fig, std::function<AC::Input_surface()> input, double stretch,
-                  std::size_t n, unsigned iterations, double pp, double pc, std::size_t pin)
+                  std::size_t n, unsigned iterations, double pp, double pc, std::size_t pin, int smoothing = 10)
 {
   Case c = case_header(name, fig, n, pp, pc, pin);
   c.background = input;
-  c.run = [stretch, n, iterations](const AC::Input_surface& s, AC::Remeshing_result& r) {
+  c.run = [stretch, n, iterations, smoothing](const AC::Input_surface& s, AC::Remeshing_result& r) {
     const auto t0 = std::chrono::steady_clock::now();
     AC::Curvature_metric_options co;
     co.stretch_max = stretch;
+    co.smoothing_iterations = smoothing;
     const AC::Curvature_metric metric(s, co);
     const double metric_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(n).number_of_iterations(iterations));
@@ -116,9 +117,10 @@ Case surface_case(const std::string& name, const std::string& fig, std::function
 }
 
 Case cyclide_case(const std::string& name, const std::string& fig, std::size_t nu, std::size_t nv, double stretch, std::size_t n,
-                  unsigned iterations, double pp, double pc, std::size_t pin)
+                  unsigned iterations, double pp, double pc, std::size_t pin, int smoothing = 10)
 {
-  return surface_case(name, fig, [nu, nv]() { return AC::make_dupin_cyclide(nu, nv); }, stretch, n, iterations, pp, pc, pin);
+  return surface_case(name, fig, [nu, nv]() { return AC::make_dupin_cyclide(nu, nv); }, stretch, n, iterations, pp, pc, pin,
+                      smoothing);
 }
 
 Measure measure(const Case& c, int runs)
@@ -181,10 +183,13 @@ int main(int argc, char** argv)
       cases.push_back(image_case("colour image (chelsea, s = 0.1)", "8", data + "/images/photo_chelsea_323.png", 0.1, 3000, 218, 6405.80, 104329));
       cases.push_back(image_case("CT image (ct_head, s = 0.2; paper 0.5)", "9", data + "/images/ct_head_211.png", 0.2, 3000, 117, 4113.01, 44521));
       // Table 2 (100 iterations) and Table 1 (200) on the cyclide, stretch [2, 29]; cyclide 2 of Table 1
-      cases.push_back(cyclide_case("cyclide 1, stretch 29, Table 2 (100 it.)", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920));
-      cases.push_back(cyclide_case("cyclide 1, stretch 29, Table 1 (200 it.)", "11", 180, 144, 29, 8000, 200, 36, 548.21, 25920));
-      cases.push_back(cyclide_case("cyclide 1, stretch 50 (beyond the paper)", "11", 180, 144, 50, 8000, 100, 0, 0, 25920));
-      cases.push_back(cyclide_case("cyclide 2, stretch 18", "15", 180, 120, 18, 1000, 100, 24, 39.15, 21600));
+      // The default smoothing (10 rounds) leaves stretch ratios in [1, 4.7] at the vertices whatever the
+      // bound; without smoothing they reach the bound (29 or 50) along the lines where a curvature vanishes.
+      cases.push_back(cyclide_case("cyclide 1, bound 29 (realised [1, 4.7]), Table 2 (100 it.)", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920));
+      cases.push_back(cyclide_case("cyclide 1, bound 29 (realised [1, 4.7]), Table 1 (200 it.)", "11", 180, 144, 29, 8000, 200, 36, 548.21, 25920));
+      cases.push_back(cyclide_case("cyclide 1, bound 29, no smoothing (realised [1, 29])", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920, 0));
+      cases.push_back(cyclide_case("cyclide 1, bound 50 (beyond the paper; realised [1, 4.7])", "11", 180, 144, 50, 8000, 100, 0, 0, 25920));
+      cases.push_back(cyclide_case("cyclide 2, bound 18", "15", 180, 120, 18, 1000, 100, 24, 39.15, 21600));
       // a real genus-1 model standing in for the Kitten (AIM@SHAPE, not redistributable): CGAL's knot1
       cases.push_back(surface_case("knot1 (genus 1; Kitten: 134438 V, 5000 out)", "12",
                                    [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/knot1.off"); }, 5, 1000, 100,

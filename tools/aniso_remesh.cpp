@@ -105,8 +105,12 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     });
   if(!o.svg.empty())
     write_atomically(o.svg, [&](const std::string& p) {
-      AC::IO::write_svg(p, out.points, out.faces, result.quality.triangle_G, 0.5, 1.0,
-                        input_name + ": " + std::to_string(out.points.size()) + " vertices, quality G in the metric");
+      const std::string title = input_name + ": " + std::to_string(out.points.size()) + " vertices, quality G in the metric";
+      if(surface.is_planar())
+        AC::IO::write_svg(p, out.points, out.faces, result.quality.triangle_G, 0.5, 1.0, title);
+      else  // a curved surface: shaded, seen from an oblique direction
+        AC::IO::write_surface_svg(p, out.points, out.faces, result.quality.triangle_G, 0.5, 1.0, title,
+                                  Eigen::Vector3d(0.3, -0.5, 1.0));
     });
   if(!o.histogram.empty())
     write_atomically(o.histogram, [&](const std::string& p) {

@@ -71,7 +71,7 @@ inline const char* usage()
          "outputs:\n"
          "  --output FILE             the mesh (.off/.obj/.ply)\n"
          "  --report FILE.json        quality, solver figures, CVT energies and stage timings\n"
-         "  --svg FILE.svg            picture of a planar output, triangles coloured by quality G\n"
+         "  --svg FILE.svg            picture of the output (a curved one shaded), triangles coloured by quality G\n"
          "  --histogram FILE.svg      angle histogram\n"
          "  --quiet                   no summary on stdout\n"
          "  --help, --version\n"

@@ -10,8 +10,9 @@
  *
  * \cgalConcept
  *
- * The domain is the plane for a disk; the sphere, the flat torus and the hyperbolic disk are the
- * domains of closed surfaces (future work). The generic stages use only the members listed here:
+ * The domain is the plane for a disk and the flat torus for a closed surface of genus 1; the sphere
+ * and the hyperbolic disk, the domains of the other closed surfaces, are future work. The generic
+ * stages use only the members listed here:
  * - `weighted_centroidal_Voronoi_tessellation()` (stage 4) calls `integrate()` for the energy, masses
  *   and centroids, `contains()` to reject L-BFGS steps that leave the domain, and `move_towards()` for
  *   Lloyd steps; it optimises the `Point`s coordinate by coordinate;
@@ -20,13 +21,16 @@
  *   `Intrinsic_triangulation`, and `number_of_fixed_sites()`.
  *
  * How a model is built and how it places the initial sites is its own business (`remesh()` uses
- * `Planar_domain_traits::initial_sites()`).
+ * `Planar_domain_traits::initial_sites()` and `Euclidean_periodic_domain_traits::initial_sites()`).
+ * A periodic domain's `Point` stands for its class: `integrate()` must accept any translate of a site
+ * and return the centroid next to that translate, `dual_triangles()` must identify translates.
  *
  * Sites are ordered: the first `number_of_fixed_sites()` stay where they are (the boundary sites of a
  * planar domain; 0 for a closed domain); the CVT receives that number as its argument
  * `number_of_fixed_sites`.
  *
  * \cgalHasModel `Aniso_conformal::Planar_domain_traits`
+ * \cgalHasModel `Aniso_conformal::Euclidean_periodic_domain_traits`
  */
 class ParametricDomainTraits {
 public:

@@ -289,8 +289,10 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   if(result.inverted_triangles > 0)
     throw Convergence_failure("remesh(): the output has " + std::to_string(result.inverted_triangles) +
                                   " inverted or degenerate triangles (G_min " + std::to_string(result.quality.G_min) +
-                                  "): the metric is too strong for this background" +
-                                  (domain == Parametric_domain::PLANE ? " near its boundary" : ""),
+                                  (domain == Parametric_domain::PLANE
+                                       ? "): the metric is too strong for this background near its boundary"
+                                       : "): the output is too coarse for thin or strongly curved parts of the surface, or the "
+                                         "metric too strong for the background (more vertices or a finer input may help)"),
                               double(result.inverted_triangles));
   const Input_surface checked = internal::check_output_topology(out, surface);
   result.hausdorff_distance = internal::hausdorff_distance(surface, checked);
