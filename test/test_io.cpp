@@ -348,3 +348,80 @@ BOOST_AUTO_TEST_CASE(square_background_resolves_the_metric)
                       }),
                       "not finite and positive definite"));
 }
+
+// --------------------------------------------------- fuzzing regressions (doc/fuzzing.md, fuzz/)
+
+namespace {
+
+// an input the fuzzers (or reading the code behind a finding) showed to crash, hang or allocate gigabytes
+std::string fuzz_input(const std::string& name)
+{
+  return std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/fuzz_regressions/" + name;
+}
+
+std::string mesh_error(const std::string& name)
+{
+  return message_of([&] { AC::IO::read_triangle_mesh(fuzz_input(name)); });
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(fuzz_regressions_off)
+{
+  // CGAL's OFF scanner read past the vertex line of an STOFF (texture) file: ASan SEGV in scan_texture()
+  BOOST_TEST(contains(mesh_error("off_texture_vertex_read_past_line.off"), "'STOFF' is not a supported OFF header"));
+  // a header count above INT_MAX: UBSan float-to-int overflow in CGAL, then arrays sized from it
+  BOOST_TEST(contains(mesh_error("off_vertex_count_overflows_int.off"), "more than the 25-byte file can hold"));
+  // a face size of 1e30: UBSan float-to-size_t overflow in CGAL, then a vector resized to it
+  BOOST_TEST(contains(mesh_error("off_face_size_not_an_integer.off"), "line 6: '1e30' is not a valid face size"));
+  // the same checks on inline inputs
+  BOOST_TEST(contains(mesh_file_error("binary.off", "OFF BINARY\n"), "binary OFF is not supported"));
+  BOOST_TEST(contains(mesh_file_error("few.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n"), "declares 3 vertices but lists 2"));
+  BOOST_TEST(contains(mesh_file_error("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+                      "face 0 refers to vertex 3, but the file has 3 vertices"));
+  BOOST_TEST(contains(mesh_file_error("neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"), "'-1' is not a valid vertex index"));
+  BOOST_TEST(contains(mesh_file_error("cut.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"), "truncated after 0 of 1 faces"));
+  BOOST_TEST(contains(mesh_file_error("word.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n"), "vertex 1: 'zero' is not a number"));
+  // what CGAL read stays readable: comments, counts on the header line, colours and normals
+  const AC::Input_surface c = AC::IO::read_triangle_mesh(
+    write_file("colours.off", "# c\nCOFF 3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255 # v1\n\n0 1 0 0 0 255 255\n3 0 1 2 1 0.5 0\n"));
+  BOOST_TEST(c.number_of_faces() == 1u);
+  BOOST_TEST(AC::IO::read_triangle_mesh(write_file("normals.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n"))
+               .number_of_vertices() == 3u);
+}
+
+BOOST_AUTO_TEST_CASE(fuzz_regressions_ply)
+{
+  // the fuzzer's input: a property before any element read the back of an empty vector in CGAL (UBSan)
+  BOOST_TEST(contains(mesh_error("ply_property_before_element_fuzzer.ply"), "PLY header line 4: unknown keyword"));
+  BOOST_TEST(contains(mesh_error("ply_property_before_element.ply"), "line 3: a property before any element"));
+  // a 32-bit list length of 2e9: an 8 GB vector in CGAL before any index is read
+  BOOST_TEST(contains(mesh_error("ply_32_bit_list_length.ply"), "list length type 'int' not supported"));
+  // 10^15 items without properties: CGAL loops over them without reading anything (a hang)
+  BOOST_TEST(contains(mesh_error("ply_element_without_properties.ply"), "declares 1000000000000000 items"));
+  // the fuzzer's input: x double, y uchar; CGAL cast y to a float property unchecked (UBSan: null member call)
+  BOOST_TEST(contains(mesh_error("ply_vertex_coordinate_not_float.ply"), "PLY property 'y' of element 'vertex' cannot have type uchar"));
+  BOOST_TEST(contains(mesh_file_error("noz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n"),
+                      "needs the properties x, y and z once each"));
+  BOOST_TEST(contains(mesh_file_error("floatlist.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list float int v\nend_header\n"),
+                      "list length type 'float' not supported"));
+  BOOST_TEST(contains(mesh_file_error("noend.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"), "without end_header"));
+}
+
+BOOST_AUTO_TEST_CASE(fuzz_regressions_images)
+{
+  auto image_error = [](const std::string& name) { return message_of([&] { AC::IO::read_image(fuzz_input(name)); }); };
+  // the fuzzer's input: a P6 header of 77777677 x 3 pixels in 39 bytes made the reader allocate 2.8 GB
+  // before noticing the missing data
+  BOOST_TEST(contains(image_error("ppm_pixels_allocated_before_size_check.ppm"), "truncated pixel data"));
+  // width * height overflowed a long long (UBSan) for header values near 2^40 (PNM) and 2^32 (PNG)
+  BOOST_TEST(contains(image_error("pgm_size_product_overflows.pgm"), "too large (1099511627775 x 1099511627775)"));
+  BOOST_TEST(contains(image_error("png_size_product_overflows.png"), "too large (4294967295 x 4294967295)"));
+  // 16384 x 16384 RGBA 16 bits with 100 bytes of data: a 2 GB buffer before inflating them
+  BOOST_TEST(contains(image_error("png_2_gb_buffer_for_100_bytes.png"), "corrupt or truncated PNG image data"));
+  BOOST_TEST(contains(message_of([] { AC::IO::read_image(write_file("big_ascii.pgm", "P2\n1000 1000\n255\n0 0 0\n")); }),
+                      "truncated pixel data"));
+  // exact sizes still read: binary data right after the single whitespace, ASCII without a final newline
+  BOOST_TEST(AC::IO::read_image(write_file("exact.pgm", std::string("P5\n2 1\n255\n\x01\x02", 13))).width == 2);
+  BOOST_TEST(AC::IO::read_image(write_file("exact_ascii.pgm", "P2\n2 1\n255\n1 2")).width == 2);
+}

@@ -47,7 +47,8 @@ inline std::vector<unsigned char> read_bytes(const std::string& path)
 inline void check_size(const std::string& path, long long w, long long h)
 {
   if(w <= 0 || h <= 0) throw Invalid_input("image " + path + ": zero size");
-  if(w * h > (1LL << 28)) throw Invalid_input("image " + path + ": too large (" + std::to_string(w) + " x " + std::to_string(h) + ")");
+  // w * h overflows for header values near 2^32 (PNG) or 2^40 (PNM): divide instead
+  if(w > (1LL << 28) / h) throw Invalid_input("image " + path + ": too large (" + std::to_string(w) + " x " + std::to_string(h) + ")");
 }
 
 // ---- Netpbm: P2/P3 (ASCII) and P5/P6 (binary), maxval up to 65535
@@ -80,6 +81,12 @@ inline Image read_pnm(const std::string& path, const std::vector<unsigned char>&
   img.width = int(w);
   img.height = int(h);
   const std::size_t n = std::size_t(w) * std::size_t(h) * std::size_t(img.channels);
+  // check that the file holds the samples before allocating them: a 20-byte header could ask for gigabytes
+  // (found by fuzzing). ASCII samples take at least a digit and a separator each, binary 1 or 2 bytes.
+  const std::size_t bytes = maxval > 255 ? 2 : 1;
+  const std::size_t left = b.size() - std::min(b.size(), pos);
+  if((kind == '2' || kind == '3') ? n > left / 2 + 1 : (left == 0 || n > (left - 1) / bytes))
+    throw Invalid_input("image " + path + ": truncated pixel data");
   img.data.resize(n);
   if(kind == '2' || kind == '3') {
     for(std::size_t i = 0; i < n; ++i) {
@@ -89,8 +96,6 @@ inline Image read_pnm(const std::string& path, const std::vector<unsigned char>&
     }
   } else {
     ++pos;  // the single whitespace after maxval
-    const std::size_t bytes = maxval > 255 ? 2 : 1;
-    if(pos > b.size() || b.size() - pos < n * bytes) throw Invalid_input("image " + path + ": truncated pixel data");
     for(std::size_t i = 0; i < n; ++i) {
       const unsigned v = bytes == 2 ? (unsigned(b[pos + 2 * i]) << 8 | b[pos + 2 * i + 1]) : b[pos + i];
       img.data[i] = float(std::min(1.0, double(v) / double(maxval)));
@@ -154,6 +159,9 @@ inline Image read_png(const std::string& path, const std::vector<unsigned char>&
   const std::size_t bits = std::size_t(samples) * std::size_t(depth);
   const std::size_t stride = (std::size_t(w) * bits + 7) / 8, bpp = std::max<std::size_t>(1, bits / 8);
   const std::size_t raw_size = (stride + 1) * std::size_t(h);
+  // deflate expands at most 1032 times: refuse a header asking for more than the data can hold before
+  // allocating it (a 100-byte file asked for 2 GB)
+  if(raw_size / 1032 > idat.size()) throw Invalid_input(bad + "corrupt or truncated PNG image data");
   std::vector<unsigned char> raw(raw_size);
   uLongf out_len = uLongf(raw_size);
   const int zr = uncompress(raw.data(), &out_len, idat.data(), uLong(idat.size()));

@@ -12,9 +12,16 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 /// \file read_triangle_mesh.h
@@ -32,13 +39,187 @@ inline std::string extension_of(const std::string& path)
   for(char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
   return e;
 }
+
+// ASCII OFF is read here, not by CGAL's File_scanner_OFF: fuzzing (doc/fuzzing.md) found that one reads
+// out of bounds on texture (ST) vertices, casts any double of a face line to a vertex count, and sizes its
+// arrays from header counts before reading anything. This parser is strict and line based: it accepts
+// OFF, COFF, NOFF and CNOFF (extra numbers after the coordinates or after a face's indices, such as
+// normals and colours, are ignored) and checks every count against what the file can hold.
+inline void read_off_soup(const std::string& path, std::vector<Soup_point>& points,
+                          std::vector<std::vector<std::size_t>>& polygons)
+{
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream lines(text);
+  std::string line;
+  std::size_t line_no = 0;
+  auto fail = [&](const std::string& what) -> void {
+    throw Invalid_input("file " + path + ", line " + std::to_string(line_no) + ": " + what);
+  };
+  // the whitespace-separated tokens of the next line with something before its '#'
+  auto next_tokens = [&](std::vector<std::string>& tokens) {
+    tokens.clear();
+    while(tokens.empty() && std::getline(lines, line)) {
+      ++line_no;
+      std::istringstream ls(line.substr(0, line.find('#')));
+      for(std::string t; ls >> t;) tokens.push_back(t);
+    }
+    return !tokens.empty();
+  };
+  auto to_index = [&](const std::string& t, const char* what) -> std::size_t {
+    errno = 0;
+    char* end = nullptr;
+    const long long v = std::strtoll(t.c_str(), &end, 10);
+    if(t.empty() || *end != '\0' || errno == ERANGE || v < 0)
+      fail("'" + t.substr(0, 40) + "' is not a valid " + what);
+    return std::size_t(v);
+  };
+  std::vector<std::string> tok;
+  if(!next_tokens(tok)) throw Invalid_input("file " + path + ": empty");
+  const std::string magic = tok[0];
+  if(magic != "OFF" && magic != "COFF" && magic != "NOFF" && magic != "CNOFF")
+    fail("'" + magic.substr(0, 20) + "' is not a supported OFF header (ASCII OFF, COFF, NOFF or CNOFF)");
+  tok.erase(tok.begin());
+  if(!tok.empty() && tok[0] == "BINARY") fail("binary OFF is not supported (use ASCII OFF, OBJ or PLY)");
+  if(tok.empty() && !next_tokens(tok)) fail("missing vertex and face counts");
+  if(tok.size() < 2) fail("expected the vertex and face counts");
+  const std::size_t nv = to_index(tok[0], "vertex count"), nf = to_index(tok[1], "face count");
+  // a vertex line takes at least 5 bytes ("0 0 0"), a face at least 7 ("3 0 1 2"): a header claiming
+  // more than the file can hold is refused before anything is allocated
+  if(nv > text.size() / 5 || nf > text.size() / 7 || 5 * nv + 7 * nf > text.size())
+    fail("the header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces, more than the " +
+         std::to_string(text.size()) + "-byte file can hold");
+  points.reserve(nv);
+  for(std::size_t i = 0; i < nv; ++i) {
+    if(!next_tokens(tok)) fail("truncated after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
+    if(tok.size() < 3) fail("vertex " + std::to_string(i) + " has fewer than 3 coordinates");
+    double x[3];
+    for(int k = 0; k < 3; ++k) {
+      char* end = nullptr;
+      x[k] = std::strtod(tok[std::size_t(k)].c_str(), &end);
+      if(*end != '\0') fail("vertex " + std::to_string(i) + ": '" + tok[std::size_t(k)].substr(0, 40) + "' is not a number");
+    }
+    points.emplace_back(x[0], x[1], x[2]);
+  }
+  polygons.reserve(nf);
+  for(std::size_t f = 0; f < nf; ++f) {
+    if(!next_tokens(tok)) fail("truncated after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+    const std::size_t k = to_index(tok[0], "face size");
+    if(k == 0 || k >= tok.size())
+      fail("face " + std::to_string(f) + " declares " + std::to_string(k) + " vertices but lists " + std::to_string(tok.size() - 1));
+    std::vector<std::size_t> poly(k);
+    for(std::size_t j = 0; j < k; ++j) {
+      poly[j] = to_index(tok[j + 1], "vertex index");
+      if(poly[j] >= nv)
+        fail("face " + std::to_string(f) + " refers to vertex " + tok[j + 1] + ", but the file has " + std::to_string(nv) + " vertices");
+    }
+    polygons.push_back(std::move(poly));
+  }
+}
+
+// CGAL's PLY_reader trusts the header: fuzzing found that a property before any element reads the back of
+// an empty vector, and by reading the code, element counts and 32-bit list lengths size its arrays before
+// any data is read and a floating-point list length is cast to an integer. This checks the header first:
+// known keywords and types only, list lengths of 8 or 16 bits, and element counts that fit the file.
+inline void check_ply_header(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const std::streamoff file_size = in.tellg();
+  in.seekg(0);
+  const std::string bad = "file " + path + ": ";
+  auto scalar_size = [](const std::string& t) -> std::size_t {
+    if(t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if(t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if(t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+    if(t == "double" || t == "float64") return 8;
+    return 0;
+  };
+  struct Element { std::string name; std::size_t count, min_bytes; std::vector<std::pair<std::string, std::string>> properties; };
+  std::vector<Element> elements;
+  std::string line, word;
+  bool binary = false, ended = false;
+  for(std::size_t line_no = 1; !ended && std::getline(in, line); ++line_no) {
+    const std::string at = bad + "PLY header line " + std::to_string(line_no) + ": ";
+    std::istringstream ls(line);
+    if(!(ls >> word)) throw Invalid_input(at + "empty line");
+    if(line_no == 1) {
+      if(word != "ply") throw Invalid_input(bad + "not a PLY file (no 'ply' magic)");
+    } else if(line_no == 2) {
+      std::string format, version;
+      if(word != "format" || !(ls >> format >> version) ||
+         (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian"))
+        throw Invalid_input(at + "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      binary = format != "ascii";
+    } else if(word == "comment" || word == "obj_info") {
+    } else if(word == "element") {
+      std::string name, count;
+      if(!(ls >> name >> count) || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 18)
+        throw Invalid_input(at + "expected 'element NAME COUNT'");
+      elements.push_back({name, std::size_t(std::stoull(count)), 0, {}});
+    } else if(word == "property") {
+      if(elements.empty()) throw Invalid_input(at + "a property before any element");
+      std::string type, size_type, name;
+      if(!(ls >> type)) throw Invalid_input(at + "expected 'property TYPE NAME'");
+      if(type == "list") {
+        if(!(ls >> size_type >> type >> name)) throw Invalid_input(at + "expected 'property list COUNT_TYPE TYPE NAME'");
+        if(scalar_size(size_type) == 0 || scalar_size(size_type) > 2)
+          throw Invalid_input(at + "list length type '" + size_type.substr(0, 20) +
+                              "' not supported (use uchar or ushort)");
+      } else if(!(ls >> name)) {
+        throw Invalid_input(at + "expected 'property TYPE NAME'");
+      }
+      if(scalar_size(type) == 0) throw Invalid_input(at + "unknown property type '" + type.substr(0, 20) + "'");
+      elements.back().properties.emplace_back(name, size_type.empty() ? type : "list");
+      // the least an item can take: the fixed sizes in binary, a digit per property in ASCII
+      elements.back().min_bytes += binary ? (size_type.empty() ? scalar_size(type) : scalar_size(size_type)) : 1;
+    } else if(word == "end_header") {
+      ended = true;
+    } else {
+      throw Invalid_input(at + "unknown keyword '" + word.substr(0, 20) + "'");
+    }
+  }
+  if(!ended) throw Invalid_input(bad + "PLY header without end_header");
+  // CGAL reads these properties by name and casts them to one type without checking (a null dereference,
+  // found by fuzzing, when x is not a float or double)
+  for(const Element& e : elements) {
+    const bool vertex = e.name == "vertex" || e.name == "vertices", face = e.name == "face" || e.name == "faces";
+    int xyz = 0;
+    for(const auto& [name, type] : e.properties) {
+      const bool coordinate = vertex && (name == "x" || name == "y" || name == "z");
+      const bool colour = (vertex || face) && (name == "red" || name == "green" || name == "blue" || name == "r" ||
+                                               name == "g" || name == "b");
+      const bool halfedge_id = e.name == "halfedge" && (name == "source" || name == "target");
+      const bool halfedge_uv = e.name == "halfedge" && (name == "u" || name == "v");
+      const bool ok = coordinate ? (type == "float" || type == "float32" || type == "double" || type == "float64")
+                    : colour ? (type == "uchar" || type == "uint8")
+                    : halfedge_id ? (type == "uint" || type == "uint32")
+                    : halfedge_uv ? (type == "float" || type == "float32") : true;
+      if(!ok)
+        throw Invalid_input(bad + "PLY property '" + name + "' of element '" + e.name + "' cannot have type " + type);
+      xyz += coordinate;
+    }
+    if(vertex && xyz != 3) throw Invalid_input(bad + "PLY element '" + e.name + "' needs the properties x, y and z once each");
+  }
+  const std::streamoff body = in.tellg() < 0 ? 0 : file_size - in.tellg();
+  std::size_t left = std::size_t(std::max<std::streamoff>(body, 0));
+  for(const Element& e : elements) {
+    if(e.count == 0) continue;
+    if(e.min_bytes == 0 || e.count > left / e.min_bytes)
+      throw Invalid_input(bad + "PLY element '" + e.name.substr(0, 20) + "' declares " + std::to_string(e.count) +
+                          " items, more than the " + std::to_string(left) + " bytes left in the file can hold");
+    left -= e.count * e.min_bytes;
+  }
+}
 } // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalIO
  * reads a triangle mesh from an OFF, OBJ or PLY file (by extension) and validates it (`Input_surface`).
+ * OFF files are ASCII `OFF`, `COFF`, `NOFF` or `CNOFF` (extra numbers on a line are ignored).
  * \throws Invalid_input naming the file if it cannot be opened or parsed, has an unsupported extension,
- *         or has a face that is not a triangle; and as `Input_surface` does for a broken mesh
+ *         declares more vertices or faces than it can hold, or has a face that is not a triangle; and as
+ *         `Input_surface` does for a broken mesh
  */
 inline Input_surface read_triangle_mesh(const std::string& path)
 {
@@ -50,7 +231,15 @@ inline Input_surface read_triangle_mesh(const std::string& path)
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;
   try {
-    ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    if(ext == "off") {
+      internal::read_off_soup(path, points, polygons);
+      ok = true;
+    } else {
+      if(ext == "ply") internal::check_ply_header(path);
+      ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+    }
+  } catch(const Invalid_input&) {
+    throw;
   } catch(const std::exception& e) {
     throw Invalid_input("file " + path + ": cannot be parsed (" + e.what() + ")");
   }
