@@ -36,6 +36,8 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
   -DANISO_CONFORMAL_BUILD_TOOLS=OFF -DANISO_CONFORMAL_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build-fuzz --target "${targets[@]}" -j1
 
+# stack traces for UBSan reports too (ASan prints them anyway)
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 status=0
 for t in "${targets[@]}"; do
   mkdir -p "build-fuzz/corpus/$t" "build-fuzz/artifacts/$t" build-fuzz/logs
