@@ -67,12 +67,6 @@ template <typename NamedParameters = parameters::Default_named_parameters>
 Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
                                      const NamedParameters& np = parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  const std::size_t max_it = choose_parameter(get_parameter(np, internal_np::max_conformal_iterations), 100u);
-  const double tol = choose_parameter(get_parameter(np, internal_np::conformal_tolerance), 1e-9);
-  typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
-
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
   std::vector<char> fixed(std::size_t(nv), 0);
   for(int v = 0; v < nv; ++v) fixed[v] = itri.is_boundary_vertex(v);
@@ -80,13 +74,7 @@ Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
     throw Invalid_input("conformal_embedding(): the triangulation has no boundary (not a disk)");
 
   Planar_embedding emb;
-  internal::Flat_conformal_solution sol =
-      internal::solve_flat_conformal_metric(itri, fixed, max_it, tol, vis, "conformal embedding");
-  emb.u = std::move(sol.u);
-  emb.iterations = sol.iterations;
-  emb.residual = sol.residual;
-  emb.degenerate_triangles = sol.degenerate;
-  emb.flips = sol.flips;
+  internal::solve_flat_conformal_metric(itri, fixed, np, "conformal embedding", emb);
 
   // ---- layout: unfold breadth-first from the face nearest the "centre" (fewest hops to all)
   std::vector<std::array<double, 3>> L(nf);

@@ -91,12 +91,6 @@ template <typename NamedParameters = parameters::Default_named_parameters>
 Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
                                           const NamedParameters& np = parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  const std::size_t max_it = choose_parameter(get_parameter(np, internal_np::max_conformal_iterations), 100u);
-  const double tol = choose_parameter(get_parameter(np, internal_np::conformal_tolerance), 1e-9);
-  typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
-
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces()), nh = int(itri.number_of_halfedges());
   for(int h = 0; h < nh; ++h)
     if(itri.is_boundary_edge(h))
@@ -109,17 +103,11 @@ Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
   Flat_torus_embedding emb;
   std::vector<char> fixed(std::size_t(nv), 0);
   fixed[0] = 1;  // the energy is invariant under a constant shift of u: fix the scale at one vertex
-  internal::Flat_conformal_solution sol =
-      internal::solve_flat_conformal_metric(itri, fixed, max_it, tol, vis, "flat torus embedding");
-  emb.u = std::move(sol.u);
-  emb.iterations = sol.iterations;
-  emb.residual = sol.residual;
-  emb.degenerate_triangles = sol.degenerate;
-  emb.flips = sol.flips;
-  if(sol.degenerate > 0)
-    throw Convergence_failure("flat torus embedding: " + std::to_string(sol.degenerate) +
+  internal::solve_flat_conformal_metric(itri, fixed, np, "flat torus embedding", emb);
+  if(emb.degenerate_triangles > 0)
+    throw Convergence_failure("flat torus embedding: " + std::to_string(emb.degenerate_triangles) +
                                   " triangles are flat in the solution (the metric is too wild for this background)",
-                              double(sol.degenerate));
+                              double(emb.degenerate_triangles));
 
   // ---- cut and unfold through the cotree
   const internal::Tree_cotree tc = internal::tree_cotree(itri);

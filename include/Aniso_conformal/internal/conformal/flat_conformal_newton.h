@@ -7,6 +7,8 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/internal/visitor_helper.h>
+#include <Aniso_conformal/parameters.h>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
@@ -238,6 +240,26 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
                                   std::to_string(it) + " iterations (tolerance " + std::to_string(tol) + ")",
                               residual);
   return sol;
+}
+
+// The same, with the bounds and the visitor from the named parameters (`max_conformal_iterations`,
+// default 100; `conformal_tolerance`, default 1e-9; `visitor`), and the figures copied into `emb`
+// (a Planar_embedding or a Flat_torus_embedding).
+template <typename Embedding, typename NamedParameters>
+void solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vector<char>& fixed, const NamedParameters& np,
+                                 const std::string& who, Embedding& emb)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const std::size_t max_it = choose_parameter(get_parameter(np, internal_np::max_conformal_iterations), 100u);
+  const double tol = choose_parameter(get_parameter(np, internal_np::conformal_tolerance), 1e-9);
+  typename Visitor_reference<NamedParameters>::type vis = get_visitor(np);
+  Flat_conformal_solution sol = solve_flat_conformal_metric(itri, fixed, max_it, tol, vis, who);
+  emb.u = std::move(sol.u);
+  emb.iterations = sol.iterations;
+  emb.residual = sol.residual;
+  emb.degenerate_triangles = sol.degenerate;
+  emb.flips = sol.flips;
 }
 
 } // namespace internal
