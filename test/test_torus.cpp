@@ -3,7 +3,8 @@
 //
 // Closed genus-1 surfaces through the flat torus: the homology basis, the flat conformal metric and its
 // lattice (exact on a flat torus), the periodic CVT's integrals and dual, remesh() on the paper's Table 2
-// cyclide against the quality bar, the BGL entry point, and every error path.
+// cyclide against the quality bar, the BGL entry point, the pictures of the periodic CVT and of a curved
+// mesh, and every error path.
 
 #define BOOST_TEST_MODULE Aniso_conformal_flat_torus
 #include <boost/test/unit_test.hpp>
@@ -11,6 +12,7 @@
 #include <Aniso_conformal/Curvature_metric.h>
 #include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/IO/write_svg.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/flat_torus_embedding.h>
@@ -25,6 +27,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <set>
@@ -403,4 +407,38 @@ BOOST_AUTO_TEST_CASE(a_real_genus_one_model_knot1)
   BOOST_TEST(r.quality.G_avg >= 0.90);
   BOOST_TEST(r.quality.theta_min >= 25.0);
   BOOST_TEST(r.hausdorff_distance_relative < 0.01);
+}
+
+BOOST_AUTO_TEST_CASE(pictures_of_the_periodic_cvt_and_of_a_curved_mesh)
+{
+  const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
+  AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
+  const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
+  const AC::Euclidean_periodic_domain_traits domain(t, emb, 1);
+  const std::vector<Eigen::Vector2d> sites = domain.initial_sites(200, 0);
+  const auto cells = domain.voronoi_cells(sites);
+  BOOST_TEST(cells.size() == sites.size());
+  for(const auto& c : cells) BOOST_TEST(c.size() >= 3u);
+  const std::string dir = ANISO_CONFORMAL_TEST_OUTPUT_DIR;
+  auto slurp = [](const std::string& p) {
+    std::ifstream f(p);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  AC::IO::write_periodic_cvt_svg(dir + "/torus_cvt.svg", domain.lattice(), sites, cells, {}, "test");
+  const std::string cvt = slurp(dir + "/torus_cvt.svg");
+  BOOST_TEST(cvt.find("<svg") != std::string::npos);
+  BOOST_TEST(cvt.find("clipPath") != std::string::npos);
+  AC::IO::write_surface_svg(dir + "/torus_mesh.svg", s.points(), s.faces(), std::vector<double>(s.number_of_faces(), 0.9), 0.5, 1.0,
+                            "test", Eigen::Vector3d(0.3, -0.5, 1.0));
+  const std::string mesh = slurp(dir + "/torus_mesh.svg");
+  BOOST_TEST(mesh.find("<svg") != std::string::npos);
+  BOOST_TEST(mesh.find("<path") != std::string::npos);
+  // errors are named
+  BOOST_CHECK_THROW(AC::IO::write_periodic_cvt_svg(dir + "/bad.svg", {{Eigen::Vector2d(1, 0), Eigen::Vector2d(2, 0)}}, sites, cells, {}, ""),
+                    AC::Invalid_input);
+  BOOST_CHECK_THROW(AC::IO::write_surface_svg(dir + "/bad.svg", s.points(), s.faces(), {}, 0.5, 1.0, "", Eigen::Vector3d::Zero()),
+                    AC::Invalid_input);
+  BOOST_CHECK_THROW(AC::IO::write_surface_svg("/nonexistent-dir/x.svg", s.points(), s.faces(),
+                                              std::vector<double>(s.number_of_faces(), 0.9), 0.5, 1.0, ""),
+                    AC::Invalid_input);
 }
