@@ -97,7 +97,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
   if(fits == Parametric_domain::AUTOMATIC)
     throw Invalid_input("remesh(): the input is " + surface.topology_description() +
                         "; this version remeshes topological disks (the plane) and closed surfaces of genus 1 (the flat torus)");
-  throw Invalid_input("remesh(): the input is " + surface.topology_description() + "; its domain, the " + domain_name(fits) +
+  throw Invalid_input("remesh(): the input is " + surface.topology_description() + "; its domain, " +
+                      (fits == Parametric_domain::SPHERE ? "the sphere" : "the hyperbolic disk") +
                       ", is not available in this version (topological disks and closed surfaces of genus 1 are)");
 }
 
