@@ -302,6 +302,52 @@ BOOST_AUTO_TEST_CASE(adjustment_repairs_a_strongly_anisotropic_metric)
   BOOST_TEST(threw);
 }
 
+BOOST_AUTO_TEST_CASE(adjustment_flip_budget_is_enforced)
+{
+  // a metric stretched 40x along a diagonal over a 30 x 30 grid: the first flip pass wants far more than
+  // the 100 flips a budget of 0 per edge leaves; the pass stops there and the splits take over
+  const AC::Input_surface sq = grid_surface(30, 30, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  const auto metric = AC::make_analytic_metric_2([](double, double) {
+    const Eigen::Vector2d d = Eigen::Vector2d(1, 1).normalized();
+    return Eigen::Matrix2d(Eigen::Matrix2d::Identity() + (1600.0 - 1) * d * d.transpose());
+  });
+  AC::Intrinsic_triangulation free_run(sq, AC::compute_metric_square_roots(sq, metric));
+  const AC::Edge_adjustment_report r = AC::adjust_edge_lengths(free_run, sq);
+  BOOST_TEST(r.flip_budget_hits == 0u);
+  BOOST_TEST(r.flips > 200u);
+  AC::Intrinsic_triangulation capped(sq, AC::compute_metric_square_roots(sq, metric));
+  const AC::Edge_adjustment_report c = AC::adjust_edge_lengths(capped, sq, AC::parameters::max_flips_per_edge(0u));
+  BOOST_TEST(c.flip_budget_hits >= 1u);
+  BOOST_TEST(c.flips <= 100u * c.rounds);
+  BOOST_TEST(triangle_inequality_everywhere(capped));  // the splits still make every triangle valid
+  capped.validate(true);
+}
+
+BOOST_AUTO_TEST_CASE(adjustment_stall_bound_is_enforced)
+{
+  // a metric that jumps by 1e8 between neighbouring vertices (a checkerboard of scales): splitting
+  // cannot make the triangles valid, three rounds without progress end the splits, and the local
+  // repair or the mollification must take over or the stage throws with the triangles left
+  const AC::Input_surface sq = grid_surface(12, 12, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  std::vector<Eigen::Matrix3d> t(sq.number_of_vertices(), Eigen::Matrix3d::Identity());
+  for(std::size_t v = 0; v < t.size(); ++v)
+    if((v + v / 12) % 2) t[v] = Eigen::Vector3d(1e8, 1, 1).asDiagonal();
+  AC::Intrinsic_triangulation it(sq, AC::compute_metric_square_roots(sq, AC::Tensor_field_metric(t)));
+  std::string outcome;
+  try {
+    const AC::Edge_adjustment_report r = AC::adjust_edge_lengths(it, sq);
+    outcome = "repaired " + std::to_string(r.repaired_triangles) + ", mollification " + std::to_string(r.mollification);
+    BOOST_TEST(r.rounds < 50u);  // ended by the stall rule, not by the round bound
+    BOOST_TEST((r.repaired_triangles > 0u || r.mollification > 0));
+    BOOST_TEST(triangle_inequality_everywhere(it));
+  } catch(const AC::Convergence_failure& e) {
+    outcome = e.what();
+    BOOST_TEST(outcome.find("splitting no longer helps") != std::string::npos);
+    BOOST_TEST(e.residual() > 0);
+  }
+  BOOST_TEST_MESSAGE("stall: " << outcome);
+}
+
 // ----------------------------------------------------------------------------- conformal embedding
 
 BOOST_AUTO_TEST_CASE(embedding_of_a_flat_square_is_the_identity_up_to_a_motion)
@@ -393,6 +439,16 @@ BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)
                                                                          AC::parameters::number_of_iterations(30u));
   BOOST_TEST(rb.energy.back() < rb.energy.front());
   BOOST_TEST(rb.energy.back() <= rl.energy.back() * 1.01);  // L-BFGS is at least as good as Lloyd
+  // the bounds: the iteration count is a budget (the CVT never throws for it, it reports the gradient
+  // reached), and each L-BFGS line search tries at most 12 steps before a Lloyd step
+  BOOST_TEST(rl.iterations == 30u);
+  BOOST_TEST(rb.iterations == 30u);
+  BOOST_TEST(rb.energy_evaluations <= 1u + 13u * 30u);
+  std::vector<AC::Planar_domain_traits::Point> short_run = start;
+  const AC::Cvt_report r3 = AC::weighted_centroidal_Voronoi_tessellation(domain, short_run, fixed,
+                                                                         AC::parameters::number_of_iterations(3u));
+  BOOST_TEST(r3.iterations == 3u);
+  BOOST_TEST(r3.gradient_norm > rb.gradient_norm);
   for(std::size_t i = 0; i < fixed; ++i) BOOST_TEST((sites[i] - start[i]).norm() == 0.0);  // boundary sites fixed
   for(std::size_t i = fixed; i < sites.size(); ++i) BOOST_TEST(domain.contains(sites[i]));
 

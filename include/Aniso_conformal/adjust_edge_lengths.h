@@ -38,6 +38,8 @@ struct Edge_adjustment_report {
   double mollification = 0;
   /// triangles repaired by changing an edge length locally when splits stalled
   std::size_t repaired_triangles = 0;
+  /// rounds whose flip pass stopped at its budget (`max_flips_per_edge`) with edges still to flip
+  std::size_t flip_budget_hits = 0;
 };
 
 namespace internal {
@@ -150,6 +152,7 @@ inline bool mollify(Intrinsic_triangulation& itri, Edge_adjustment_report& repor
  * \param surface the input surface the vertices of `itri` lie on
  * \param np optional named parameters:
  *   - `max_adjustment_rounds` (unsigned, default 50): bound on flip-then-split rounds;
+ *   - `max_flips_per_edge` (unsigned, default 20): bound on the flips of one round, per edge it examines;
  *   - `visitor`: `on_iteration(Stage::EDGE_LENGTHS, round, bound, invalid_triangles)`.
  *
  * When three rounds of splits in a row do not reduce the number of invalid triangles (a metric that
@@ -162,8 +165,10 @@ inline bool mollify(Intrinsic_triangulation& itri, Edge_adjustment_report& repor
  * (`Edge_adjustment_report::mollification`).
  *
  * The first round examines every edge, later rounds only the edges around the vertices the splits
- * inserted. The number of flips of a round is bounded by 20 times the number of edges it examines (a
- * metric that varies across a quad can make Lawson's algorithm cycle); flipping then stops for that round.
+ * inserted. The number of flips of a round is bounded by `max_flips_per_edge` times the number of edges
+ * it examines, plus 100 (a metric that varies across a quad can make Lawson's algorithm cycle); flipping
+ * then stops for that round (`Edge_adjustment_report::flip_budget_hits`) and the splits go on: the
+ * round bound still applies.
  * \throws Convergence_failure if invalid triangles remain after `max_adjustment_rounds` rounds, or when
  *         the splits stall and mollification would need more than a tenth of the median edge length
  *         (the residual is their number): the metric varies too fast for the input's resolution.
@@ -175,6 +180,7 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   const std::size_t max_rounds = choose_parameter(get_parameter(np, internal_np::max_adjustment_rounds), 50u);
+  const std::size_t flips_per_edge = choose_parameter(get_parameter(np, internal_np::max_flips_per_edge), 20u);
   typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
 
   Edge_adjustment_report report;
@@ -211,7 +217,7 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
           enqueue(Intrinsic_triangulation::next(h));
         }
     }
-    const std::size_t flip_budget = 20 * queue.size() + 100;
+    const std::size_t flip_budget = flips_per_edge * queue.size() + 100;
     std::size_t flips_this_round = 0;
     while(!queue.empty() && flips_this_round < flip_budget) {
       const int h = queue.front();
@@ -226,6 +232,7 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
         enqueue(e);
     }
     report.flips += flips_this_round;
+    if(!queue.empty()) ++report.flip_budget_hits;
     compute_metric_edge_lengths(itri);
 
     // 2. longest-edge splits of the triangles that are still invalid, and splits of the boundary edges
