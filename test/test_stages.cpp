@@ -462,6 +462,26 @@ BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)
     BOOST_TEST((out.points[i] - out.surface_points[i].position).norm() < 1e-12);
 }
 
+BOOST_AUTO_TEST_CASE(conformal_flip_budget_is_enforced)
+{
+  // a 30 x 30 grid sheared 4:1: its thin triangles are far from Delaunay, the first flip pass needs
+  // hundreds of flips; a budget of 0 per halfedge (100 flips) stops the solve with a Convergence_failure
+  const AC::Input_surface sheared = grid_surface(30, 30, [](double u, double v) { return Eigen::Vector3d(u + 4 * v, v, 0); });
+  AC::Intrinsic_triangulation t(sheared, AC::compute_metric_square_roots(sheared, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  AC::Intrinsic_triangulation t2 = t;
+  const AC::Planar_embedding emb = AC::conformal_embedding(t);
+  BOOST_TEST(emb.flips > 100u);
+  bool threw = false;
+  try {
+    AC::conformal_embedding(t2, AC::parameters::max_flips_per_edge(0u));
+  } catch(const AC::Convergence_failure& e) {
+    BOOST_TEST_MESSAGE("flip budget: " << e.what());
+    threw = std::string(e.what()).find("did not terminate within 100 flips") != std::string::npos && e.residual() > 0;
+  }
+  BOOST_TEST(threw);
+}
+
 // ----------------------------------------------------------------------------------- quality
 
 BOOST_AUTO_TEST_CASE(quality_is_measured_in_the_metric)

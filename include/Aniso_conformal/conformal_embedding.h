@@ -57,7 +57,8 @@ struct Planar_embedding {
  * \param itri a disk-topology triangulation with valid edge lengths (after `adjust_edge_lengths()`);
  *        interior edges may be flipped
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
- *        (default `1e-9`, on the max angle-sum error in radians), `visitor`
+ *        (default `1e-9`, on the max angle-sum error in radians), `max_flips_per_edge` (default 50: the
+ *        intrinsic Delaunay flips of one evaluation are at most that many per halfedge, plus 100), `visitor`
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`).
  * \throws Invalid_input if `itri` has no boundary
  * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, if the

@@ -82,7 +82,8 @@ inline void reduce_lattice_basis(Eigen::Vector2d& a, Eigen::Vector2d& b)
  * \param itri a closed genus-1 triangulation with valid edge lengths (after `adjust_edge_lengths()`);
  *        its edges may be flipped
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
- *        (default `1e-9`), `visitor` (`on_iteration(Stage::EMBEDDING, it, bound, residual)`)
+ *        (default `1e-9`), `max_flips_per_edge` (default 50, as in `conformal_embedding()`), `visitor`
+ *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`)
  * \throws Invalid_input if `itri` has a boundary or is not of genus 1
  * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, or the
  *         layout is inconsistent (with the error reached)

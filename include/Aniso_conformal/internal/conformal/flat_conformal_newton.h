@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -89,12 +90,15 @@ struct Flat_conformal_solution {
  * Interior edges of `itri` are flipped (Ptolemy lengths) to keep it intrinsically Delaunay for the
  * current scales. `who` names the caller in messages. At least one vertex must be fixed (on a closed
  * surface the energy is invariant under a constant shift of u; one fixed vertex removes that).
- * Bounded: `max_it` Newton iterations, 40 halvings per line search, 50 x (halfedges) flips per
- * evaluation; throws Convergence_failure with the residual reached.
+ * Bounded: `max_it` Newton iterations, 40 halvings per line search, `flips_per_halfedge` x (halfedges)
+ * + 100 flips per evaluation; throws Convergence_failure with the residual reached when the Newton or the
+ * flip bound is hit (Delaunay flips terminate in exact arithmetic, so hitting that bound means rounding
+ * made them cycle).
  */
 template <typename Visitor>
 Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vector<char>& fixed,
-                                                    std::size_t max_it, double tol, Visitor& vis, const std::string& who)
+                                                    std::size_t max_it, double tol, Visitor& vis, const std::string& who,
+                                                    std::size_t flips_per_halfedge = 50)
 {
   const double pi = 3.14159265358979323846, two_pi = 2 * pi;
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
@@ -124,6 +128,8 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
   // new edge gets its length by Ptolemy's relation, which commutes with the scaling, so the flipped
   // triangulation stays in the same discrete conformal class and no triangle degenerates (Gillespie,
   // Springborn and Crane 2021). Returns the number of flips.
+  double residual = std::numeric_limits<double>::infinity();  // the angle-sum error, for the messages
+  std::size_t it = 0;
   auto make_delaunay = [&](const std::vector<double>& u, bool euclidean) {
     std::size_t flips = 0;
     const int nh = int(itri.number_of_halfedges());
@@ -134,7 +140,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
       if(itri.twin(r) >= 0 && !queued[std::size_t(r)]) { queued[std::size_t(r)] = 1; queue.push_back(r); }
     };
     for(int h = 0; h < nh; ++h) enqueue(h);
-    const std::size_t budget = 50 * std::size_t(nh) + 100;  // Delaunay flips terminate; this only guards
+    const std::size_t budget = flips_per_halfedge * std::size_t(nh) + 100;  // Delaunay flips terminate; a guard
     while(!queue.empty() && flips < budget) {
       const int h = queue.front();
       queue.pop_front();
@@ -160,6 +166,12 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
         enqueue(e);
     }
     sol.flips += flips;
+    if(!queue.empty())
+      throw Convergence_failure(who + ": the intrinsic Delaunay flips did not terminate within " + std::to_string(budget) +
+                                    (std::isfinite(residual) ? " flips at Newton iteration " + std::to_string(it) +
+                                                                   " (angle-sum error " + std::to_string(residual) + ")"
+                                                             : std::string(" flips of the first pass, before Newton's method")),
+                                residual);
     return flips;
   };
 
@@ -200,8 +212,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
   bool analysed = false;
   std::size_t degenerate = 0;
   make_delaunay(sol.u, true);
-  double residual = evaluate(sol.u, true, degenerate);
-  std::size_t it = 0;
+  residual = evaluate(sol.u, true, degenerate);
   for(; it < max_it && residual > tol; ++it) {
     H.setFromTriplets(triplets.begin(), triplets.end());
     // a tiny diagonal shift keeps the factorisation definite where degenerate triangles zero a row
@@ -243,7 +254,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
 }
 
 // The same, with the bounds and the visitor from the named parameters (`max_conformal_iterations`,
-// default 100; `conformal_tolerance`, default 1e-9; `visitor`), and the figures copied into `emb`
+// default 100; `conformal_tolerance`, default 1e-9; `max_flips_per_edge`, default 50; `visitor`), and the figures copied into `emb`
 // (a Planar_embedding or a Flat_torus_embedding).
 template <typename Embedding, typename NamedParameters>
 void solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vector<char>& fixed, const NamedParameters& np,
@@ -253,8 +264,9 @@ void solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vecto
   using CGAL::parameters::get_parameter;
   const std::size_t max_it = choose_parameter(get_parameter(np, internal_np::max_conformal_iterations), 100u);
   const double tol = choose_parameter(get_parameter(np, internal_np::conformal_tolerance), 1e-9);
+  const std::size_t flips_per_halfedge = choose_parameter(get_parameter(np, internal_np::max_flips_per_edge), 50u);
   typename Visitor_reference<NamedParameters>::type vis = get_visitor(np);
-  Flat_conformal_solution sol = solve_flat_conformal_metric(itri, fixed, max_it, tol, vis, who);
+  Flat_conformal_solution sol = solve_flat_conformal_metric(itri, fixed, max_it, tol, vis, who, flips_per_halfedge);
   emb.u = std::move(sol.u);
   emb.iterations = sol.iterations;
   emb.residual = sol.residual;
