@@ -10,18 +10,20 @@
  *
  * \cgalConcept
  *
- * The domain is the plane for a disk and the flat torus for a closed surface of genus 1; the sphere
- * and the hyperbolic disk, the domains of the other closed surfaces, are future work. The generic
- * stages use only the members listed here:
+ * The domain is the plane for a disk, the unit sphere for a closed surface of genus 0 and the flat
+ * torus for a closed surface of genus 1; the hyperbolic disk, the domain of closed surfaces of higher
+ * genus, is future work. The generic stages use only the members listed here:
  * - `weighted_centroidal_Voronoi_tessellation()` (stage 4) calls `integrate()` for the energy, masses
  *   and centroids, `contains()` to reject L-BFGS steps that leave the domain, and `move_towards()` for
- *   Lloyd steps; it optimises the `Point`s coordinate by coordinate;
+ *   Lloyd steps; it optimises the `Point`s coordinate by coordinate, and calls the optional hooks
+ *   `project_to_tangent_plane()` and `project_to_domain()` of a curved domain if it has them;
  * - `extract_dual_mesh()` (stage 5) calls `dual_triangles()` for the output connectivity,
  *   `background_location()` to map every site back onto the input through the background
  *   `Intrinsic_triangulation`, and `number_of_fixed_sites()`.
  *
  * How a model is built and how it places the initial sites is its own business (`remesh()` uses
- * `Planar_domain_traits::initial_sites()` and `Euclidean_periodic_domain_traits::initial_sites()`).
+ * `Planar_domain_traits::initial_sites()`, `Spherical_domain_traits::initial_sites()` and
+ * `Euclidean_periodic_domain_traits::initial_sites()`).
  * A periodic domain's `Point` stands for its class: `integrate()` must accept any translate of a site
  * and return the centroid next to that translate, `dual_triangles()` must identify translates.
  *
@@ -29,7 +31,14 @@
  * planar domain; 0 for a closed domain); the CVT receives that number as its argument
  * `number_of_fixed_sites`.
  *
+ * A curved domain embedded in the space of its `Point`s (the sphere in R^3) is optimised under the
+ * constraint of staying on it: its cells' `centroid` is the centroid in the ambient space (so that
+ * `2 mass_i (site_i - centroid_i)` is the ambient gradient of the energy), and the two optional hooks
+ * below turn the unconstrained L-BFGS into a constrained one. A model without them (a flat domain) is optimised exactly
+ * as before the hooks existed (the detection is at compile time).
+ *
  * \cgalHasModel `Aniso_conformal::Planar_domain_traits`
+ * \cgalHasModel `Aniso_conformal::Spherical_domain_traits`
  * \cgalHasModel `Aniso_conformal::Euclidean_periodic_domain_traits`
  */
 class ParametricDomainTraits {
@@ -69,8 +78,29 @@ public:
   /// returns `true` if `p` is in the domain
   bool contains(const Point& p) const;
 
-  /// returns `p` moved towards `target` as far as the domain allows (`target` itself if it is inside)
+  /// returns `p` moved towards `target` as far as the domain allows (`target` itself if it is inside;
+  /// on a curved domain, the constrained centroid: the sphere's `move_towards()` normalises `target`)
   Point move_towards(const Point& p, const Point& target) const;
+
+  /// @}
+
+  /// \name Optional hooks of a curved domain (stage 4)
+  /// These are detected at compile time and need not exist; `Spherical_domain_traits` has both.
+  /// @{
+
+  /*!
+   * returns the point of the domain to which the trial point `p` is mapped back (a retraction): the
+   * L-BFGS steps are taken in the ambient coordinates, then every trial site is passed through this
+   * before `contains()` and `integrate()` (the sphere normalises `p`)
+   */
+  Point project_to_domain(const Point& p) const;
+
+  /*!
+   * returns the component of the vector `v` tangent to the domain at its point `x`: applied to each
+   * site's energy gradient and L-BFGS direction, so that the optimisation moves along the domain (the
+   * sphere returns `v - (x.v) x`)
+   */
+  Point project_to_tangent_plane(const Point& x, const Point& v) const;
 
   /// @}
 

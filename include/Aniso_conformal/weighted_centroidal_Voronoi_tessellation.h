@@ -14,11 +14,31 @@
 #include <cmath>
 #include <deque>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 /// \file weighted_centroidal_Voronoi_tessellation.h
 
 namespace Aniso_conformal {
+namespace internal {
+
+// Optional hooks of a curved domain (ParametricDomainTraits): `project_to_domain(p)` maps a trial point
+// taken in the ambient coordinates back onto the domain, `project_to_tangent_plane(x, v)` keeps the
+// component of v tangent to the domain at x. Without them (flat domains) the code below is unchanged.
+template <typename D, typename = void>
+struct Has_project_to_domain : std::false_type {};
+template <typename D>
+struct Has_project_to_domain<D, std::void_t<decltype(std::declval<const D&>().project_to_domain(
+                                    std::declval<const typename D::Point&>()))>> : std::true_type {};
+template <typename D, typename = void>
+struct Has_project_to_tangent_plane : std::false_type {};
+template <typename D>
+struct Has_project_to_tangent_plane<D, std::void_t<decltype(std::declval<const D&>().project_to_tangent_plane(
+                                           std::declval<const typename D::Point&>(), std::declval<const typename D::Point&>()))>>
+    : std::true_type {};
+
+} // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalStages
@@ -44,7 +64,14 @@ struct Cvt_report {
  * first step is a Lloyd step, with an Armijo backtracking line search that also rejects steps leaving
  * the domain; a failed line search falls back to a Lloyd step.
  *
- * \tparam DomainTraits a model of `ParametricDomainTraits` (`Planar_domain_traits`)
+ * On a curved domain that provides the optional hooks of `ParametricDomainTraits` (the sphere), the
+ * optimisation is constrained to the domain: gradients and L-BFGS directions are projected on the
+ * tangent planes at the sites (`project_to_tangent_plane()`), and every trial point is mapped back onto
+ * the domain (`project_to_domain()`) before it is integrated (a retraction; the differences of points and
+ * of projected gradients serve as the L-BFGS pairs).
+ *
+ * \tparam DomainTraits a model of `ParametricDomainTraits` (`Planar_domain_traits`,
+ *         `Euclidean_periodic_domain_traits`, `Spherical_domain_traits`)
  * \param domain the domain
  * \param sites the sites, optimised in place
  * \param number_of_fixed_sites the first sites stay where they are (boundary sites)
@@ -79,11 +106,16 @@ Cvt_report weighted_centroidal_Voronoi_tessellation(const DomainTraits& domain,
     for(const Cell& cell : c) e += cell.energy;
     return e;
   };
+  constexpr bool tangent_hook = internal::Has_project_to_tangent_plane<DomainTraits>::value;
+  constexpr bool domain_hook = internal::Has_project_to_domain<DomainTraits>::value;
   auto gradient_of = [&](const std::vector<Point>& x, const std::vector<Cell>& c, Eigen::VectorXd& g) {
     g.resize(nvar);
     for(std::size_t i = 0; i < nfree; ++i) {
       const std::size_t s = number_of_fixed_sites + i;
-      g.segment(Eigen::Index(i) * D, D) = 2.0 * c[s].mass * (x[s] - c[s].centroid);
+      if constexpr(tangent_hook)
+        g.segment(Eigen::Index(i) * D, D) = domain.project_to_tangent_plane(x[s], Point(2.0 * c[s].mass * (x[s] - c[s].centroid)));
+      else
+        g.segment(Eigen::Index(i) * D, D) = 2.0 * c[s].mass * (x[s] - c[s].centroid);
     }
   };
   auto lloyd_step = [&](std::vector<Point>& x, const std::vector<Cell>& c) {
@@ -120,6 +152,11 @@ Cvt_report weighted_centroidal_Voronoi_tessellation(const DomainTraits& domain,
         q += (alpha[k] - beta) * S[k];
       }
       Eigen::VectorXd d = -q;
+      if constexpr(tangent_hook)
+        for(std::size_t i = 0; i < nfree; ++i) {
+          const Point di = d.segment(Eigen::Index(i) * D, D);
+          d.segment(Eigen::Index(i) * D, D) = domain.project_to_tangent_plane(sites[number_of_fixed_sites + i], di);
+        }
       double slope = g.dot(d);
       if(!(slope < 0)) {  // not a descent direction: restart from the preconditioned gradient
         S.clear(); Y.clear(); RHO.clear();
@@ -137,7 +174,10 @@ Cvt_report weighted_centroidal_Voronoi_tessellation(const DomainTraits& domain,
         bool inside = true;
         for(std::size_t i = 0; i < nfree && inside; ++i) {
           const std::size_t s = number_of_fixed_sites + i;
-          trial[s] = sites[s] + step * d.segment(Eigen::Index(i) * D, D);
+          if constexpr(domain_hook)
+            trial[s] = domain.project_to_domain(Point(sites[s] + step * d.segment(Eigen::Index(i) * D, D)));
+          else
+            trial[s] = sites[s] + step * d.segment(Eigen::Index(i) * D, D);
           inside = domain.contains(trial[s]);
         }
         if(!inside) continue;
