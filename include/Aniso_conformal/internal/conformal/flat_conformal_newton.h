@@ -78,7 +78,7 @@ inline Eigen::Vector2d third_point(const Eigen::Vector2d& p, const Eigen::Vector
 
 // what the solve did
 struct Flat_conformal_solution {
-  std::vector<double> u;           // log scale per vertex (0 at the fixed vertices)
+  std::vector<double> u;           // log scale per vertex (0, or fixed_u, at the fixed vertices)
   std::size_t iterations = 0;      // Newton iterations
   double residual = 0;             // max |2 pi - angle sum| over the free vertices
   std::size_t degenerate = 0;      // triangles treated as flat at the end
@@ -93,12 +93,17 @@ struct Flat_conformal_solution {
  * Bounded: `max_it` Newton iterations, 40 halvings per line search, `flips_per_halfedge` x (halfedges)
  * + 100 flips per evaluation; throws Convergence_failure with the residual reached when the Newton or the
  * flip bound is hit (Delaunay flips terminate in exact arithmetic, so hitting that bound means rounding
- * made them cycle).
+ * made them cycle). Where `keep_star` is given, no flip touches the star of a vertex it marks (no edge
+ * at that vertex nor opposite it is flipped), so that star stays as it is (the puncture of the sphere).
+ * Where `fixed_u` is given, the fixed vertices take its values instead of 0 (Dirichlet data); the first
+ * flip pass still uses u = 0, so that the conformal class is that of the input metric.
  */
 template <typename Visitor>
 Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vector<char>& fixed,
                                                     std::size_t max_it, double tol, Visitor& vis, const std::string& who,
-                                                    std::size_t flips_per_halfedge = 50)
+                                                    std::size_t flips_per_halfedge = 50,
+                                                    const std::vector<char>* keep_star = nullptr,
+                                                    const std::vector<double>* fixed_u = nullptr)
 {
   const double pi = 3.14159265358979323846, two_pi = 2 * pi;
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
@@ -109,6 +114,10 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
 
   Flat_conformal_solution sol;
   sol.u.assign(nv, 0.0);
+  const std::vector<double> zero = sol.u;  // the input metric, for the first flip pass
+  if(fixed_u)
+    for(int v = 0; v < nv; ++v)
+      if(fixed[v]) sol.u[v] = (*fixed_u)[std::size_t(v)];
   std::vector<double> angle_sum(nv);
   std::vector<Eigen::Triplet<double>> triplets;
   auto scaled = [&](int h, const std::vector<double>& u) {
@@ -149,6 +158,9 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
       if(t < 0 || opposite_angle(h, u) + opposite_angle(t, u) <= pi + 1e-10) continue;
       const int c = itri.opposite_vertex(h), d = itri.opposite_vertex(t);
       if(c == d || itri.find_halfedge(c, d) >= 0) continue;  // would create a double edge
+      if(keep_star && ((*keep_star)[std::size_t(c)] || (*keep_star)[std::size_t(d)] || (*keep_star)[std::size_t(itri.tail(h))] ||
+                       (*keep_star)[std::size_t(itri.head(h))]))
+        continue;
       const double l_ab = itri.length(h), l_bc = itri.length(Intrinsic_triangulation::next(h)),
                    l_ca = itri.length(Intrinsic_triangulation::prev(h)), l_ad = itri.length(Intrinsic_triangulation::next(t)),
                    l_db = itri.length(Intrinsic_triangulation::prev(t));
@@ -211,7 +223,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   bool analysed = false;
   std::size_t degenerate = 0;
-  make_delaunay(sol.u, true);
+  make_delaunay(zero, true);
   residual = evaluate(sol.u, true, degenerate);
   for(; it < max_it && residual > tol; ++it) {
     H.setFromTriplets(triplets.begin(), triplets.end());
@@ -235,7 +247,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
     double step = 1.0;
     std::size_t deg_new = 0;
     for(int k = 0; k < 40; ++k, step *= 0.5) {
-      for(int v = 0; v < nv; ++v) trial[v] = index[v] >= 0 ? sol.u[v] + step * du[index[v]] : 0.0;
+      for(int v = 0; v < nv; ++v) trial[v] = index[v] >= 0 ? sol.u[v] + step * du[index[v]] : sol.u[v];
       if(evaluate(trial, false, deg_new) < residual || k == 39) break;
     }
     sol.u.swap(trial);
@@ -258,7 +270,8 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
 // (a Planar_embedding or a Flat_torus_embedding).
 template <typename Embedding, typename NamedParameters>
 void solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vector<char>& fixed, const NamedParameters& np,
-                                 const std::string& who, Embedding& emb)
+                                 const std::string& who, Embedding& emb, const std::vector<char>* keep_star = nullptr,
+                                 const std::vector<double>* fixed_u = nullptr)
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
@@ -266,7 +279,7 @@ void solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vecto
   const double tol = choose_parameter(get_parameter(np, internal_np::conformal_tolerance), 1e-9);
   const std::size_t flips_per_halfedge = choose_parameter(get_parameter(np, internal_np::max_flips_per_edge), 50u);
   typename Visitor_reference<NamedParameters>::type vis = get_visitor(np);
-  Flat_conformal_solution sol = solve_flat_conformal_metric(itri, fixed, max_it, tol, vis, who, flips_per_halfedge);
+  Flat_conformal_solution sol = solve_flat_conformal_metric(itri, fixed, max_it, tol, vis, who, flips_per_halfedge, keep_star, fixed_u);
   emb.u = std::move(sol.u);
   emb.iterations = sol.iterations;
   emb.residual = sol.residual;
