@@ -166,12 +166,12 @@ BOOST_AUTO_TEST_CASE(tool_bad_input_exits_2_with_a_message)
   BOOST_TEST(r.status == 2);
   BOOST_TEST(r.err.find("exceed") != std::string::npos);
 
-  // a closed surface is not a disk (this version)
+  // a closed surface does not fit the plane
   const std::string tetra = out_dir + "/cli_tetra.off";
   write_file(tetra, "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n");
-  r = run("--input " + tetra + " --vertices 4");
+  r = run("--input " + tetra + " --vertices 4 --domain plane");
   BOOST_TEST(r.status == 2);
-  BOOST_TEST(r.err.find("closed surface") != std::string::npos);
+  BOOST_TEST(r.err.find("closed surface of genus 0") != std::string::npos);
 
   // an unreadable image
   write_file(out_dir + "/cli_bad.png", "this is not a png");

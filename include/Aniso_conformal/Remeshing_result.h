@@ -24,7 +24,7 @@ namespace Aniso_conformal {
  */
 struct Remeshing_result {
   std::array<double, number_of_stages> seconds{};  ///< wall time of each stage, indexed by `Stage`
-  std::string domain;                              ///< the parametric domain used ("plane", "flat-torus")
+  std::string domain;                              ///< the parametric domain used ("plane", "sphere", "flat-torus")
   std::size_t input_vertices = 0;                  ///< vertices of the input
   std::size_t input_faces = 0;                     ///< faces of the input
   std::size_t background_vertices = 0;             ///< vertices of the background after adjustment
@@ -46,6 +46,9 @@ struct Remeshing_result {
   double hausdorff_distance = 0;
   double hausdorff_distance_relative = 0;          ///< `hausdorff_distance` over the input's bounding-box diagonal
   std::array<double, 4> lattice{};                 ///< flat torus only: the reduced lattice basis (a.x, a.y, b.x, b.y)
+  /// sphere only: the angle distortion of the conformal map, mean and largest over the corners, in degrees
+  /// (`Spherical_embedding::angle_distortion_mean`, `angle_distortion_max`)
+  std::array<double, 2> angle_distortion{};
   /// total wall time
   double total_seconds() const
   {

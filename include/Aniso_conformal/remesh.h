@@ -10,6 +10,7 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Planar_domain_traits.h>
 #include <Aniso_conformal/Remeshing_result.h>
+#include <Aniso_conformal/Spherical_domain_traits.h>
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
@@ -19,6 +20,7 @@
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/parameters.h>
+#include <Aniso_conformal/spherical_embedding.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
@@ -92,14 +94,16 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
   if(requested != Parametric_domain::AUTOMATIC && requested != fits)
     throw Invalid_input(std::string("remesh(): the ") + domain_name(requested) + " domain does not fit the input, which is " +
                         surface.topology_description() +
-                        " (the plane takes topological disks, the flat torus closed surfaces of genus 1)");
-  if(fits == Parametric_domain::PLANE || fits == Parametric_domain::FLAT_TORUS) return fits;
+                        " (the plane takes topological disks, the sphere closed surfaces of genus 0, the flat torus closed "
+                        "surfaces of genus 1)");
+  if(fits == Parametric_domain::PLANE || fits == Parametric_domain::SPHERE || fits == Parametric_domain::FLAT_TORUS) return fits;
   if(fits == Parametric_domain::AUTOMATIC)
     throw Invalid_input("remesh(): the input is " + surface.topology_description() +
-                        "; this version remeshes topological disks (the plane) and closed surfaces of genus 1 (the flat torus)");
-  throw Invalid_input("remesh(): the input is " + surface.topology_description() + "; its domain, " +
-                      (fits == Parametric_domain::SPHERE ? "the sphere" : "the hyperbolic disk") +
-                      ", is not available in this version (topological disks and closed surfaces of genus 1 are)");
+                        "; this version remeshes topological disks (the plane) and closed surfaces of genus 0 (the sphere) "
+                        "and 1 (the flat torus)");
+  throw Invalid_input("remesh(): the input is " + surface.topology_description() +
+                      "; its domain, the hyperbolic disk, is not available in this version (topological disks and closed "
+                      "surfaces of genus 0 and 1 are)");
 }
 
 template <typename Embedding>
@@ -174,6 +178,8 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
  * - a topological disk (a 2D domain, an image, an open curved patch) goes to the plane: the output
  *   keeps the boundary (boundary vertices on the input boundary, corners turning by more than
  *   `corner_angle` degrees kept as vertices) and is a single disk;
+ * - a closed surface of genus 0 goes to the unit sphere (`spherical_embedding()`,
+ *   `Spherical_domain_traits`): the output is a closed genus-0 surface;
  * - a closed surface of genus 1 goes to the flat torus (`flat_torus_embedding()`,
  *   `Euclidean_periodic_domain_traits`): the output is a closed genus-1 surface.
  *
@@ -199,9 +205,9 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
  *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).
  * \returns the output mesh as arrays
  * \throws Invalid_input if the topology has no domain in this version (a surface with several boundary
- *         loops, a closed surface of genus 0 or above 1) or does not fit `parametric_domain`, the metric is
+ *         loops, a closed surface of genus above 1) or does not fit `parametric_domain`, the metric is
  *         unusable (non-finite, not symmetric, not positive definite on the tangent plane),
- *         `number_of_vertices` is missing, below the minimum (3, and at least the number of corners),
+ *         `number_of_vertices` is missing, below the minimum (3 and the number of corners; 4 on the sphere, 7 on the flat torus),
  *         or above the number of background vertices
  * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
  *         output would have an inverted or degenerate triangle or a wrong topology (it is never returned)
@@ -227,6 +233,9 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   if(domain == Parametric_domain::FLAT_TORUS && n < 7)
     throw Invalid_input("remesh(): a closed surface of genus 1 needs at least 7 output vertices (the smallest torus "
                         "triangulation), " + std::to_string(n) + " were requested");
+  if(domain == Parametric_domain::SPHERE && n < 4)
+    throw Invalid_input("remesh(): a closed surface of genus 0 needs at least 4 output vertices (the tetrahedron), " +
+                        std::to_string(n) + " were requested");
   result = Remeshing_result();
   result.domain = domain_name(domain);
   result.input_vertices = surface.number_of_vertices();
@@ -260,6 +269,15 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
       adjusted_area += internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
     std::vector<Planar_domain_traits::Point> sites = traits.initial_sites(n, seed, adjusted_area);
+    out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+  } else if(domain == Parametric_domain::SPHERE) {
+    internal::Stage_timer t3(vis, Stage::EMBEDDING);
+    const Spherical_embedding emb = spherical_embedding(itri, np);
+    internal::record_embedding(emb, result);
+    result.angle_distortion = {{emb.angle_distortion_mean, emb.angle_distortion_max}};
+    result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
+    Spherical_domain_traits traits(itri, emb, threads);
+    std::vector<Spherical_domain_traits::Point> sites = traits.initial_sites(n, seed);
     out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
   } else {
     internal::Stage_timer t3(vis, Stage::EMBEDDING);

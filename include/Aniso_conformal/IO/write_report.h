@@ -83,7 +83,8 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
      << ", \"flips\": " << r.adjustment.flips << ", \"splits\": " << r.adjustment.splits
      << ", \"rounds\": " << r.adjustment.rounds
      << ", \"repaired_triangles\": " << r.adjustment.repaired_triangles
-     << ", \"mollification\": " << json_number(r.adjustment.mollification) << "},\n";
+     << ", \"mollification\": " << json_number(r.adjustment.mollification)
+     << ", \"flip_budget_hits\": " << r.adjustment.flip_budget_hits << "},\n";
   os << "  \"conformal_embedding\": {\"newton_iterations\": " << r.conformal_iterations
      << ", \"residual\": " << json_number(r.conformal_residual) << ", \"intrinsic_flips\": " << r.conformal_flips
      << ", \"conformal_factor_min\": " << json_number(r.conformal_factor_min)
@@ -91,6 +92,9 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
   if(r.domain == "flat-torus")
     os << ", \"lattice\": [[" << json_number(r.lattice[0]) << ", " << json_number(r.lattice[1]) << "], ["
        << json_number(r.lattice[2]) << ", " << json_number(r.lattice[3]) << "]]";
+  if(r.domain == "sphere")
+    os << ", \"angle_distortion_mean_degrees\": " << json_number(r.angle_distortion[0])
+       << ", \"angle_distortion_max_degrees\": " << json_number(r.angle_distortion[1]);
   os << "},\n";
   os << "  \"cvt\": {\"method\": \"" << (r.cvt.method == Cvt_method::LLOYD ? "lloyd" : "lbfgs")
      << "\", \"iterations\": " << r.cvt.iterations << ", \"energy_evaluations\": " << r.cvt.energy_evaluations

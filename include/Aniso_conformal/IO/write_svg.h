@@ -264,6 +264,100 @@ inline void write_periodic_cvt_svg(const std::string& path, const std::array<Eig
 
 /*!
  * \ingroup PkgAnisoConformalIO
+ * draws a CVT on the unit sphere (the paper's Fig.\ 10 (a)) as SVG: two orthographic views side by side,
+ * the hemisphere facing `view_direction` and the opposite one, each cell a polygon filled by its value on
+ * the blue-red ramp (20 classes), with the sites as dots, the sphere's outline, a legend and a title.
+ * A cell is drawn in the view its site faces; its far vertices are pushed to the outline, so cells along
+ * the rim stay closed.
+ *
+ * \param path the SVG file to write
+ * \param sites the sites, unit vectors
+ * \param cells per site, its Voronoi cell on the sphere as a closed polygon of unit vectors (any orientation)
+ * \param values a value per site for the colour (empty: all cells pale)
+ * \param title a line of text above the picture
+ * \param view_direction the direction from the sphere's centre towards the viewer of the left view
+ * \throws Invalid_input if the counts differ, `view_direction` is zero or not finite, or the file cannot be written
+ */
+inline void write_spherical_cvt_svg(const std::string& path, const std::vector<Eigen::Vector3d>& sites,
+                                    const std::vector<std::vector<Eigen::Vector3d>>& cells, const std::vector<double>& values,
+                                    const std::string& title, const Eigen::Vector3d& view_direction = Eigen::Vector3d(0.3, -1.0, 0.5))
+{
+  if(cells.size() != sites.size())
+    throw Invalid_input("write_spherical_cvt_svg(): " + std::to_string(cells.size()) + " cells for " + std::to_string(sites.size()) + " sites");
+  if(!values.empty() && values.size() != sites.size())
+    throw Invalid_input("write_spherical_cvt_svg(): " + std::to_string(values.size()) + " values for " + std::to_string(sites.size()) + " sites");
+  if(!view_direction.allFinite() || !(view_direction.norm() > 0))
+    throw Invalid_input("write_spherical_cvt_svg(): the view direction must be finite and non-zero");
+  // the view frame: w towards the viewer, v the z axis projected (or y near the poles), u = v x w
+  const Eigen::Vector3d w = view_direction.normalized();
+  Eigen::Vector3d up = std::abs(w.z()) > 0.95 ? Eigen::Vector3d(0, 1, 0) : Eigen::Vector3d(0, 0, 1);
+  const Eigen::Vector3d v = (up - up.dot(w) * w).normalized(), u = v.cross(w);
+  const double R = 400, left = 20, top = 40, gap = 40, width = 2 * (2 * R) + gap + 2 * left, height = 2 * R + top + 60;
+  char buf[256];
+  double vmin = 1e300, vmax = -1e300;
+  for(double x : values)
+    if(std::isfinite(x)) { vmin = std::min(vmin, x); vmax = std::max(vmax, x); }
+  if(vmin > vmax) vmin = vmax = 0;
+  const int classes = values.empty() ? 1 : 20;
+  // per view (0 front, 1 back: mirrored so that the back is seen from behind), per colour class, the path
+  std::vector<std::string> paths(std::size_t(2 * classes));
+  std::string dots[2];
+  for(int view = 0; view < 2; ++view) {
+    const Eigen::Vector3d W = view == 0 ? w : Eigen::Vector3d(-w), U = view == 0 ? u : Eigen::Vector3d(-u);
+    const double cx = left + R + view * (2 * R + gap), cy = top + R;
+    auto xy = [&](Eigen::Vector3d p) {
+      if(p.dot(W) < 0) {  // beyond the rim: push it onto the outline
+        p -= p.dot(W) * W;
+        if(p.norm() > 0) p.normalize();
+      }
+      std::snprintf(buf, sizeof(buf), "%.2f,%.2f", cx + R * p.dot(U), cy - R * p.dot(v));
+      return std::string(buf);
+    };
+    for(std::size_t i = 0; i < sites.size(); ++i) {
+      if(!sites[i].allFinite() || sites[i].dot(W) < 0 || cells[i].size() < 3) continue;
+      int c = 0;
+      if(!values.empty() && vmax > vmin && std::isfinite(values[i]))
+        c = std::min(classes - 1, std::max(0, int((values[i] - vmin) / (vmax - vmin) * classes)));
+      std::string& d = paths[std::size_t(view * classes + c)];
+      for(std::size_t k = 0; k < cells[i].size(); ++k) d += (k == 0 ? "M" : k == 1 ? "L" : " ") + xy(cells[i][k]);
+      d += "Z";
+      dots[view] += "M" + xy(sites[i]) + "h0";
+    }
+  }
+
+  std::ofstream out(path);
+  if(!out) throw Invalid_input("cannot write " + path);
+  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
+                width, height, width, height);
+  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
+  for(int view = 0; view < 2; ++view) {
+    const double cx = left + R + view * (2 * R + gap), cy = top + R;
+    out << "<g stroke=\"#333\" stroke-width=\"0.3\" stroke-linejoin=\"round\">\n";
+    for(int c = 0; c < classes; ++c) {
+      const std::string& d = paths[std::size_t(view * classes + c)];
+      if(d.empty()) continue;
+      out << "<path fill=\"" << (values.empty() ? std::string("#eef2f8") : internal::ramp((c + 0.5) / classes)) << "\" d=\"" << d << "\"/>\n";
+    }
+    out << "</g>\n";
+    if(!dots[view].empty())
+      out << "<path fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-width=\"2\" d=\"" << dots[view] << "\"/>\n";
+    std::snprintf(buf, sizeof(buf), "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"none\" stroke=\"black\" stroke-width=\"1.5\"/>\n", cx, cy, R);
+    out << buf;
+    std::snprintf(buf, sizeof(buf), "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%s</text>\n", cx - R,
+                  top + 2 * R + 20, view == 0 ? "front hemisphere" : "back hemisphere (seen from behind)");
+    out << buf;
+  }
+  std::snprintf(buf, sizeof(buf), "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%zu sites</text>\n", left,
+                top + 2 * R + 40, sites.size());
+  out << buf;
+  if(!values.empty()) internal::write_legend(out, width - 360, top + 2 * R + 30, vmin, vmax);
+  out << "</svg>\n";
+  if(!out) throw Invalid_input("cannot write " + path);
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
  * draws a closed surface in 3D (the paper's Fig.\ 11 (c)) as SVG: an orthographic view along
  * `view_direction`, back faces culled, the other triangles painted from the farthest to the nearest
  * (sorted by the depth of their centroids), each filled by its value in `face_values` on a red-yellow-green

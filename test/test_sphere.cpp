@@ -1,0 +1,1091 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Closed genus-0 surfaces through the sphere, in two suites.
+// - The embedding and the pipeline: the ellipsoid generator, the spherical conformal embedding
+//   (puncture, planar solve, inverse stereographic projection, Moebius normalisation: exact on round
+//   spheres and their Moebius images, discretely conformal everywhere, centred), the whole pipeline on
+//   the paper's Fig. 10 ellipsoid and on the bundled bear and cow, and the bad inputs.
+// - spherical_cvt: the spherical domain (stage 4 and the dual of stage 5) on icospheres, without the
+//   embedding: exact integrals of the restricted Voronoi diagram on the chordal polyhedron (against the
+//   polyhedron's area and a brute-force quadrature), the gradient against finite differences along
+//   tangent directions, the constrained CVT with Lloyd and L-BFGS (monotone energy, near-uniform cells,
+//   cell areas following rho^(-1/2)), the Delaunay dual as a closed outward genus-0 surface, the way
+//   back to the background, the Voronoi cells for pictures, every error path, and the integration time.
+
+#define BOOST_TEST_MODULE Aniso_conformal_sphere
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/Planar_domain_traits.h>
+#include <Aniso_conformal/Spherical_domain_traits.h>
+#include <Aniso_conformal/Tensor_field_metric.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/make_dupin_cyclide.h>
+#include <Aniso_conformal/make_ellipsoid.h>
+#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/spherical_embedding.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
+
+#include "mesh_checks.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace AC = Aniso_conformal;
+
+namespace {
+
+const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
+
+template <typename Metric>
+AC::Intrinsic_triangulation background(const AC::Input_surface& s, const Metric& metric)
+{
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, metric));
+  AC::adjust_edge_lengths(t, s);
+  return t;
+}
+
+// The output is a closed, connected, consistently oriented genus-0 2-manifold with n vertices, each on the input
+void check_sphere_output(const AC::Input_surface& s, const AC::Remeshed_surface& out, std::size_t n)
+{
+  BOOST_TEST(out.points.size() == n);
+  BOOST_TEST(out.faces.size() == 2 * n - 4);
+  const test::Mesh_counts m = test::count_mesh(out.points, out.faces);
+  BOOST_TEST(m.boundary_edges == 0u);
+  BOOST_TEST(m.euler == 2);
+  std::vector<AC::Input_surface::Face> faces(out.faces.begin(), out.faces.end());
+  BOOST_CHECK_NO_THROW(AC::Input_surface(out.points, faces));
+  double worst = 0;
+  for(const auto& sp : out.surface_points) {
+    const Eigen::Vector3d x = sp.barycentric[0] * s.points()[sp.vertices[0]] + sp.barycentric[1] * s.points()[sp.vertices[1]] +
+                              sp.barycentric[2] * s.points()[sp.vertices[2]];
+    worst = std::max(worst, (x - sp.position).norm());
+  }
+  BOOST_TEST(worst < 1e-9);
+}
+
+// Discrete conformality of the whole closed surface: with r_e = log(chord_e / l_e), each face (i, j, k)
+// gives U_i = r_ij + r_ik - r_jk; the map is discretely conformal iff all the faces around a vertex agree.
+// Returns the largest disagreement (the star of the puncture included).
+double conformality_spread(const AC::Intrinsic_triangulation& t, const AC::Spherical_embedding& emb)
+{
+  std::vector<double> lo(t.number_of_vertices(), 1e300), hi(t.number_of_vertices(), -1e300);
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const auto& c = t.face_vertices(f);
+    std::array<double, 3> r;  // r[k]: edge from corner k to k+1
+    for(int k = 0; k < 3; ++k)
+      r[k] = std::log((emb.position[std::size_t(c[(k + 1) % 3])] - emb.position[std::size_t(c[k])]).norm() / t.length(int(3 * f) + k));
+    for(int k = 0; k < 3; ++k) {
+      const double U = r[k] + r[(k + 2) % 3] - r[(k + 1) % 3];
+      lo[std::size_t(c[k])] = std::min(lo[std::size_t(c[k])], U);
+      hi[std::size_t(c[k])] = std::max(hi[std::size_t(c[k])], U);
+    }
+  }
+  double worst = 0;
+  for(std::size_t v = 0; v < lo.size(); ++v) worst = std::max(worst, hi[v] - lo[v]);
+  return worst;
+}
+
+// chordal triangles not positively oriented seen from outside, and the largest | |x| - 1 |
+std::size_t non_positive_triangles(const AC::Intrinsic_triangulation& t, const AC::Spherical_embedding& emb, double& off_sphere)
+{
+  std::size_t bad = 0;
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const auto& c = t.face_vertices(f);
+    const Eigen::Vector3d &a = emb.position[std::size_t(c[0])], &b = emb.position[std::size_t(c[1])], &d = emb.position[std::size_t(c[2])];
+    if(!(a.dot(b.cross(d)) > 0)) ++bad;
+  }
+  off_sphere = 0;
+  for(const auto& x : emb.position) off_sphere = std::max(off_sphere, std::abs(x.norm() - 1));
+  return bad;
+}
+
+// the neighbours of v, in counterclockwise order
+std::vector<int> neighbours(const AC::Intrinsic_triangulation& t, int v)
+{
+  std::vector<int> n;
+  for(int h : t.outgoing_halfedges(v)) n.push_back(t.head(h));
+  return n;
+}
+
+// The surface of the cube [-1, 1]^3, each face an n x n grid of squares cut by parallel diagonals,
+// oriented outward: every vertex off the cube's edges has a link edge cocircular with it
+AC::Input_surface make_grid_cube(int n)
+{
+  std::map<std::array<int, 3>, std::size_t> index;
+  std::vector<Eigen::Vector3d> points;
+  auto vertex = [&](std::array<int, 3> g) {
+    const auto it = index.find(g);
+    if(it != index.end()) return it->second;
+    points.push_back(Eigen::Vector3d(g[0], g[1], g[2]) * (2.0 / n) - Eigen::Vector3d::Ones());
+    return index[g] = points.size() - 1;
+  };
+  std::vector<AC::Input_surface::Face> faces;
+  for(int a = 0; a < 3; ++a)
+    for(int side : {0, n})
+      for(int i = 0; i < n; ++i)
+        for(int j = 0; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> g;
+            g[std::size_t(a)] = side;
+            g[std::size_t((a + 1) % 3)] = i + di;
+            g[std::size_t((a + 2) % 3)] = j + dj;
+            return vertex(g);
+          };
+          const std::size_t p00 = at(0, 0), p10 = at(1, 0), p11 = at(1, 1), p01 = at(0, 1);
+          if(side == n) {  // e_(a+1) x e_(a+2) = e_a: counterclockwise in (i, j) is outward
+            faces.push_back({{p00, p10, p11}});
+            faces.push_back({{p00, p11, p01}});
+          } else {
+            faces.push_back({{p00, p11, p10}});
+            faces.push_back({{p00, p01, p11}});
+          }
+        }
+  return AC::Input_surface(points, faces);
+}
+
+// the smallest Delaunay margin pi - (sum of the two angles facing the edge) over the link edges of v
+double link_margin(const AC::Intrinsic_triangulation& t, int v)
+{
+  auto facing = [&](int h) {
+    bool deg = false;
+    const int f = h / 3;
+    return AC::internal::corner_angles({{t.length(3 * f), t.length(3 * f + 1), t.length(3 * f + 2)}}, deg)[std::size_t((h % 3 + 2) % 3)];
+  };
+  double m = 1e300;
+  for(int h : t.outgoing_halfedges(v)) {
+    const int e = AC::Intrinsic_triangulation::next(h);  // the link edge facing v
+    m = std::min(m, 3.14159265358979323846 - facing(e) - facing(t.twin(e)));
+  }
+  return m;
+}
+
+double seconds_since(const std::chrono::steady_clock::time_point& t0)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string message_of(const std::function<void()>& f)
+{
+  try {
+    f();
+  } catch(const AC::Error& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(ellipsoid_generator_sizes_and_topology)
+{
+  const AC::Input_surface e5 = AC::make_ellipsoid(5), e3 = AC::make_ellipsoid(3), e0 = AC::make_ellipsoid(0);
+  BOOST_TEST(e5.number_of_vertices() == 10242u);
+  BOOST_TEST(e5.number_of_faces() == 20480u);
+  BOOST_TEST(e3.number_of_vertices() == 642u);
+  BOOST_TEST(e0.number_of_vertices() == 12u);
+  for(const AC::Input_surface* e : {&e0, &e3, &e5}) {
+    BOOST_TEST(e->genus() == 0);
+    BOOST_TEST(e->euler_characteristic() == 2);
+    BOOST_TEST(e->boundary_loops().empty());
+  }
+  // on the ellipsoid, outward oriented (normals point away from the centre), deterministic
+  double worst = 0;
+  for(const auto& p : e3.points()) worst = std::max(worst, std::abs(std::pow(p.x(), 2) + std::pow(p.y() / 0.6, 2) + std::pow(p.z() / 0.4, 2) - 1));
+  BOOST_TEST(worst < 1e-12);
+  for(std::size_t v = 0; v < e3.number_of_vertices(); ++v) BOOST_TEST(e3.vertex_normals()[v].dot(e3.points()[v]) > 0);
+  const AC::Input_surface again = AC::make_ellipsoid(3);
+  BOOST_TEST((again.points() == e3.points()));
+  BOOST_TEST((again.faces() == e3.faces()));
+  BOOST_TEST(message_of([] { AC::make_ellipsoid(-1); }).find("subdivision level") != std::string::npos);
+  BOOST_TEST(message_of([] { AC::make_ellipsoid(9); }).find("subdivision level") != std::string::npos);
+  BOOST_TEST(message_of([] { AC::make_ellipsoid(2, 1, 0, 1); }).find("semi-axes") != std::string::npos);
+  BOOST_TEST(message_of([] { AC::make_ellipsoid(2, 1, 1, std::nan("")); }).find("semi-axes") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(round_sphere_is_recovered_up_to_a_rotation)
+{
+  // The unit icosphere with its chord lengths is inscribed in the sphere and centrally symmetric: the
+  // discrete conformal map onto the sphere, centred, is a rotation, so every chord keeps its length.
+  const AC::Input_surface s = AC::make_ellipsoid(3, 1, 1, 1);
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  const std::size_t nv = t.number_of_vertices();
+  const auto t0 = std::chrono::steady_clock::now();
+  const AC::Spherical_embedding emb = AC::spherical_embedding(t);
+  const double time = seconds_since(t0);
+  BOOST_TEST_MESSAGE("icosphere 642: Newton " << emb.iterations << ", residual " << emb.residual << ", flips " << emb.flips
+                                              << ", centring " << emb.centring_iterations << ", offset " << emb.centre_offset
+                                              << ", angle distortion " << emb.angle_distortion_mean << " / "
+                                              << emb.angle_distortion_max << " deg, " << time << " s");
+  BOOST_TEST(t.number_of_vertices() == nv);
+  BOOST_TEST(emb.position.size() == nv);
+  BOOST_TEST(emb.residual <= 1e-9);
+  BOOST_TEST(emb.centre_offset <= 1e-9);
+  double worst_chord = 0;
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f)
+    for(int k = 0; k < 3; ++k) {
+      const int a = t.face_vertices(f)[k], b = t.face_vertices(f)[(k + 1) % 3];
+      worst_chord = std::max(worst_chord, std::abs((emb.position[std::size_t(a)] - emb.position[std::size_t(b)]).norm() -
+                                                   (s.points()[std::size_t(a)] - s.points()[std::size_t(b)]).norm()));
+    }
+  BOOST_TEST(worst_chord < 1e-8);
+  BOOST_TEST(emb.angle_distortion_max < 1e-5);
+  double off_sphere = 1;
+  BOOST_TEST(non_positive_triangles(t, emb, off_sphere) == 0u);
+  BOOST_TEST(off_sphere < 1e-12);
+  for(double cf : emb.conformal_factor) BOOST_TEST(std::abs(cf / emb.conformal_factor[0] - 1) < 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(moebius_image_of_a_round_sphere_is_mapped_conformally_and_centred)
+{
+  // A Moebius image of the icosphere (most of its area crowded on one side) is still inscribed in the
+  // sphere, and its chords are discretely conformal to the icosphere's: the result must be a Moebius
+  // image too (every chord is the input's times per-vertex factors), with the area centred.
+  const AC::Input_surface ico = AC::make_ellipsoid(3, 1, 1, 1);
+  std::vector<Eigen::Vector3d> moved = ico.points();
+  for(auto& x : moved) x = AC::internal::ball_translation(x, Eigen::Vector3d(0.5, -0.3, 0.4));
+  const AC::Input_surface s(moved, ico.faces());
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  const AC::Spherical_embedding emb = AC::spherical_embedding(t);
+  const double spread = conformality_spread(t, emb);
+  BOOST_TEST_MESSAGE("Moebius icosphere: Newton " << emb.iterations << ", flips " << emb.flips << ", centring "
+                                                  << emb.centring_iterations << ", offset " << emb.centre_offset
+                                                  << ", conformality spread " << spread << ", angle distortion "
+                                                  << emb.angle_distortion_mean << " / " << emb.angle_distortion_max << " deg");
+  BOOST_TEST(spread < 1e-6);
+  BOOST_TEST(emb.centre_offset <= 1e-9);
+  BOOST_TEST(emb.centring_iterations <= 20u);
+  // the centroid of the area, recomputed here from the vertex weights (a third of the areas around)
+  std::vector<double> w(t.number_of_vertices(), 0.0);
+  double total = 0;
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const double a = AC::internal::heron_area(t.length(int(3 * f)), t.length(int(3 * f + 1)), t.length(int(3 * f + 2)));
+    for(int v : t.face_vertices(f)) w[std::size_t(v)] += a / 3;
+    total += a;
+  }
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for(std::size_t v = 0; v < w.size(); ++v) c += w[v] / total * emb.position[v];
+  BOOST_TEST(c.norm() < 1e-8);
+  double off_sphere = 1;
+  BOOST_TEST(non_positive_triangles(t, emb, off_sphere) == 0u);
+  // the icosahedron itself (12 vertices, 6 of them on the closed star of the puncture)
+  const AC::Input_surface i0 = AC::make_ellipsoid(0, 1, 1, 1);
+  AC::Intrinsic_triangulation t0(i0, AC::compute_metric_square_roots(i0, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t0);
+  const AC::Spherical_embedding e0 = AC::spherical_embedding(t0);
+  BOOST_TEST(conformality_spread(t0, e0) < 1e-9);
+  BOOST_TEST(e0.angle_distortion_max < 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(puncture_avoids_link_edges_cocircular_with_it)
+{
+  // On a grid of squares cut by diagonals, a vertex and the triangle beyond a diagonal of its link are
+  // cocircular: the inversion from it would make that triangle flat. The flattest vertex (the old rule)
+  // is such a grid vertex; the puncture must be one whose link edges are strictly Delaunay.
+  const AC::Input_surface s = make_grid_cube(12);
+  BOOST_REQUIRE(s.genus() == 0);
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  const AC::Intrinsic_triangulation before = t;  // already intrinsically Delaunay: the first flip pass does nothing
+  AC::Spherical_embedding emb;
+  BOOST_REQUIRE_NO_THROW(emb = AC::spherical_embedding(t));
+  // the puncture has the largest link margin (a corner whose three diagonals are spokes: pi / 2)
+  double best = -1e300;
+  for(int v = 0; v < int(s.number_of_vertices()); ++v) best = std::max(best, link_margin(before, v));
+  BOOST_TEST(link_margin(before, emb.puncture) >= best - 1e-12);
+  BOOST_TEST(std::abs(best - 3.14159265358979323846 / 2) < 1e-9);
+  const double spread = conformality_spread(t, emb);
+  BOOST_TEST_MESSAGE("grid cube: puncture at " << s.points()[std::size_t(emb.puncture)].transpose() << ", Newton " << emb.iterations
+                                               << ", flips " << emb.flips << ", centring " << emb.centring_iterations
+                                               << ", conformality spread " << spread << ", angle distortion "
+                                               << emb.angle_distortion_mean << " / " << emb.angle_distortion_max << " deg");
+  BOOST_TEST(emb.degenerate_triangles == 0u);
+  BOOST_TEST(spread < 1e-6);
+  double off_sphere = 1;
+  BOOST_TEST(non_positive_triangles(t, emb, off_sphere) == 0u);
+  // The triangulation is symmetric under p -> -p and the cyclic permutations of the axes, and the centred
+  // conformal map is unique up to an orthogonal map, so the conformal factor has these symmetries too,
+  // whichever vertex was punctured: equal at (1, 1, 1) and (-1, -1, -1), and at the 6 other corners.
+  std::vector<double> same_signs, mixed_signs;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v) {
+    const Eigen::Vector3d& x = s.points()[v];
+    if(x.cwiseAbs().minCoeff() < 1 - 1e-12) continue;
+    (std::abs(x.sum()) > 2 ? same_signs : mixed_signs).push_back(emb.conformal_factor[v]);
+  }
+  BOOST_REQUIRE(same_signs.size() == 2u);
+  BOOST_REQUIRE(mixed_signs.size() == 6u);
+  BOOST_TEST(std::abs(same_signs[1] / same_signs[0] - 1) < 1e-6);
+  const auto cf = std::minmax_element(mixed_signs.begin(), mixed_signs.end());
+  BOOST_TEST(*cf.second / *cf.first - 1 < 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(bear_with_euclidean_lengths_has_grid_regions)
+{
+  // The bear's flat parts are square grids cut by diagonals. The flattest vertex, punctured, gave 263
+  // inverted triangles (a link edge cocircular with it); the margin rule must find a good puncture.
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/bear.off");
+  AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
+  AC::Spherical_embedding emb;
+  BOOST_REQUIRE_NO_THROW(emb = AC::spherical_embedding(t));
+  const double spread = conformality_spread(t, emb);
+  BOOST_TEST_MESSAGE("bear, Euclidean: " << t.number_of_vertices() << " vertices, Newton " << emb.iterations << ", flips " << emb.flips
+                                         << ", centring " << emb.centring_iterations << ", conformality spread " << spread
+                                         << ", angle distortion " << emb.angle_distortion_mean << " / " << emb.angle_distortion_max
+                                         << " deg");
+  BOOST_TEST(spread < 1e-6);
+  double off_sphere = 1;
+  BOOST_TEST(non_positive_triangles(t, emb, off_sphere) == 0u);
+  BOOST_TEST(link_margin(t, emb.puncture) > 0.1);
+}
+
+BOOST_AUTO_TEST_CASE(embedding_of_the_fig10_ellipsoid_with_its_curvature_metric)
+{
+  // the paper's Fig. 10 ellipsoid (10242 vertices) with its curvature metric, stretch up to 10
+  const AC::Input_surface s = AC::make_ellipsoid(5);
+  AC::Curvature_metric_options co;
+  co.stretch_max = 10;
+  const AC::Curvature_metric metric(s, co);
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, metric));
+  AC::compute_metric_edge_lengths(t);
+  AC::adjust_edge_lengths(t, s);
+  const AC::Intrinsic_triangulation before = t;
+  const std::size_t nv = t.number_of_vertices();
+  const auto t0 = std::chrono::steady_clock::now();
+  const AC::Spherical_embedding emb = AC::spherical_embedding(t);
+  const double time = seconds_since(t0);
+  const double spread = conformality_spread(t, emb);
+  const auto cf = std::minmax_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+  BOOST_TEST_MESSAGE("Fig. 10 ellipsoid: puncture " << emb.puncture << ", Newton " << emb.iterations << ", residual " << emb.residual
+                                                    << ", flips " << emb.flips << ", centring " << emb.centring_iterations
+                                                    << ", offset " << emb.centre_offset << ", conformality spread " << spread
+                                                    << ", angle distortion " << emb.angle_distortion_mean << " / "
+                                                    << emb.angle_distortion_max << " deg, cf in [" << *cf.first << ", "
+                                                    << *cf.second << "], " << time << " s");
+  BOOST_TEST(t.number_of_vertices() == nv);
+  BOOST_TEST(emb.position.size() == nv);
+  BOOST_TEST(emb.residual <= 1e-9);
+  BOOST_TEST(emb.iterations <= 30u);
+  BOOST_TEST(emb.degenerate_triangles == 0u);
+  BOOST_TEST(emb.centre_offset <= 1e-9);
+  BOOST_TEST(spread < 1e-6);
+  double off_sphere = 1;
+  BOOST_TEST(non_positive_triangles(t, emb, off_sphere) == 0u);
+  BOOST_TEST(off_sphere < 1e-12);
+  for(double c : emb.conformal_factor) BOOST_TEST((c > 0 && std::isfinite(c)));
+  // measured 0.17 / 0.62 degrees (0.18 / 6.4 with u = 0 on the link instead of the inversion's data)
+  BOOST_TEST(emb.angle_distortion_mean < 0.3);
+  BOOST_TEST(emb.angle_distortion_max < 2.0);
+  // no edge is flipped on this input, so the star of the puncture is the one before the call
+  BOOST_REQUIRE(emb.puncture >= 0);
+  BOOST_TEST(neighbours(t, emb.puncture) == neighbours(before, emb.puncture));
+  for(int h : t.outgoing_halfedges(emb.puncture))
+    BOOST_TEST(t.length(h) == before.length(before.find_halfedge(emb.puncture, t.head(h))));
+}
+
+BOOST_AUTO_TEST_CASE(spherical_embedding_refuses_what_it_cannot_do)
+{
+  const AC::Input_surface s = AC::make_ellipsoid(3);
+  // a disk: the ellipsoid with one face removed
+  std::vector<AC::Input_surface::Face> faces = s.faces();
+  faces.pop_back();
+  const AC::Input_surface disk(s.points(), faces);
+  AC::Intrinsic_triangulation td = background(disk, AC::Uniform_metric());
+  BOOST_TEST(message_of([&] { AC::spherical_embedding(td); }).find("has a boundary") != std::string::npos);
+  // a torus
+  const AC::Input_surface torus = AC::make_dupin_cyclide(24, 16);
+  AC::Intrinsic_triangulation tt = background(torus, AC::Uniform_metric());
+  BOOST_TEST(message_of([&] { AC::spherical_embedding(tt); }).find("genus 1") != std::string::npos);
+  // the Newton bound is enforced, with the residual reached
+  AC::Curvature_metric_options co;
+  co.stretch_max = 10;
+  AC::Intrinsic_triangulation t = background(s, AC::Curvature_metric(s, co));
+  const std::size_t nv = t.number_of_vertices();
+  double residual = -1;
+  std::string what;
+  try {
+    AC::spherical_embedding(t, AC::parameters::max_conformal_iterations(1u).conformal_tolerance(1e-15));
+  } catch(const AC::Convergence_failure& e) {
+    residual = e.residual();
+    what = e.what();
+  }
+  BOOST_TEST_MESSAGE("bounded Newton: " << what);
+  BOOST_TEST(residual > 1e-15);
+  BOOST_TEST(std::isfinite(residual));
+  BOOST_TEST(what.find("spherical embedding") != std::string::npos);
+  BOOST_TEST(what.find("after 1 iterations") != std::string::npos);
+  BOOST_TEST(t.number_of_vertices() == nv);
+}
+
+BOOST_AUTO_TEST_CASE(fig10_ellipsoid_meets_the_quality_bar)
+{
+  // the paper's Fig. 10: 10242 vertices, curvature metric with stretch up to 10, 1000 output vertices
+  const AC::Input_surface s = AC::make_ellipsoid(5);
+  const std::vector<Eigen::Vector3d> before = s.points();
+  AC::Curvature_metric_options co;
+  co.stretch_max = 10;
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out =
+      AC::remesh(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1000)));
+  check_sphere_output(s, out, 1000);
+  BOOST_TEST(r.domain == "sphere");
+  const AC::Quality_report& q = r.quality;
+  BOOST_TEST_MESSAGE("Fig. 10: G_min " << q.G_min << " G_avg " << q.G_avg << " theta_min " << q.theta_min << " %<30 "
+                                       << q.percent_below_30 << " Hausdorff " << r.hausdorff_distance_relative << " total "
+                                       << r.total_seconds() << " s");
+  BOOST_TEST(q.G_avg >= 0.90);
+  BOOST_TEST(q.theta_min >= 20.0);
+  BOOST_TEST(q.percent_below_30 <= 0.5);
+  BOOST_TEST(r.hausdorff_distance_relative < 0.01);
+  BOOST_TEST((s.points() == before));
+}
+
+BOOST_AUTO_TEST_CASE(a_real_genus_zero_model_bear_at_two_sizes)
+{
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/bear.off");
+  BOOST_REQUIRE(s.genus() == 0);
+  AC::Curvature_metric_options co;
+  co.stretch_max = 5;
+  const AC::Curvature_metric metric(s, co);
+  for(std::size_t n : {std::size_t(1000), std::size_t(4000)}) {
+    AC::Remeshing_result r;
+    const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(n));
+    check_sphere_output(s, out, n);
+    BOOST_TEST_MESSAGE("bear " << n << ": G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg << " theta_min " << r.quality.theta_min
+                               << " %<30 " << r.quality.percent_below_30 << " cf in [" << r.conformal_factor_min << ", "
+                               << r.conformal_factor_max << "] Hausdorff " << r.hausdorff_distance_relative << " " << r.total_seconds()
+                               << " s");
+    BOOST_TEST(r.quality.G_avg >= 0.85);
+    BOOST_TEST(r.quality.theta_min >= 10.0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)
+{
+  // the cow's legs and tail: the conformal map to the sphere shrinks them below double precision
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/cow.off");
+  AC::Remeshing_result r;
+  std::string m;
+  try {
+    AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(500)));
+    m = "(accepted)";
+  } catch(const AC::Convergence_failure& e) {
+    m = e.what();
+    BOOST_TEST(e.residual() > 0);
+  }
+  BOOST_TEST_MESSAGE("cow: " << m);
+  BOOST_TEST(m.find("too small on the sphere") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(bad_genus_zero_inputs_name_the_problem)
+{
+  const AC::Input_surface s = AC::make_ellipsoid(2);
+  AC::Remeshing_result r;
+  // a domain that does not fit, both ways
+  BOOST_TEST(message_of([&] {
+               AC::remesh(s, AC::Uniform_metric(), r,
+                          AC::parameters::number_of_vertices(std::size_t(50)).parametric_domain(AC::Parametric_domain::FLAT_TORUS));
+             }).find("does not fit the input, which is a closed surface of genus 0") != std::string::npos);
+  const AC::Input_surface torus = AC::make_dupin_cyclide(24, 16);
+  BOOST_TEST(message_of([&] {
+               AC::remesh(torus, AC::Uniform_metric(), r,
+                          AC::parameters::number_of_vertices(std::size_t(50)).parametric_domain(AC::Parametric_domain::SPHERE));
+             }).find("the sphere domain does not fit") != std::string::npos);
+  // too few vertices
+  BOOST_TEST(message_of([&] { AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(3))); })
+                 .find("at least 4 output vertices") != std::string::npos);
+  // the embedding on the wrong topology
+  AC::Intrinsic_triangulation tt = background(torus, AC::Uniform_metric());
+  BOOST_TEST(message_of([&] { AC::spherical_embedding(tt); }).find("genus 1") != std::string::npos);
+  // a genus-0 mesh with a hole is a disk: it goes to the plane, not the sphere
+  std::vector<AC::Input_surface::Face> faces = s.faces();
+  faces.pop_back();
+  std::vector<Eigen::Vector3d> points = s.points();
+  const AC::Input_surface holed(points, faces);
+  BOOST_TEST(message_of([&] {
+               AC::remesh(holed, AC::Uniform_metric(), r,
+                          AC::parameters::number_of_vertices(std::size_t(50)).parametric_domain(AC::Parametric_domain::SPHERE));
+             }).find("does not fit the input, which is a topological disk") != std::string::npos);
+  // a metric jumping by 1e8 between neighbours with a bounded Newton: a Convergence_failure, never garbage
+  std::vector<Eigen::Matrix3d> wild(s.number_of_vertices(), Eigen::Matrix3d::Identity());
+  for(std::size_t i = 0; i < wild.size(); i += 2) wild[i] *= 1e8;
+  bool threw = false;
+  try {
+    AC::remesh(s, AC::Tensor_field_metric(wild), r, AC::parameters::number_of_vertices(std::size_t(50)).max_conformal_iterations(2u));
+  } catch(const AC::Convergence_failure&) {
+    threw = true;
+  }
+  BOOST_TEST(threw);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The spherical domain on its own (suite spherical_cvt: its helpers live in that suite's namespace)
+
+BOOST_AUTO_TEST_SUITE(spherical_cvt)
+
+namespace AC = Aniso_conformal;
+typedef AC::Spherical_domain_traits Domain;
+typedef Domain::Point Point;
+
+namespace {
+
+const double pi = 3.14159265358979323846;
+
+// the icosahedron subdivided `level` times, vertices on the unit sphere, faces counterclockwise from outside
+AC::Input_surface make_icosphere(int level)
+{
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Eigen::Vector3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for(auto& x : p) x.normalize();
+  std::vector<AC::Input_surface::Face> f = {{{0, 11, 5}}, {{0, 5, 1}},  {{0, 1, 7}},   {{0, 7, 10}}, {{0, 10, 11}},
+                                            {{1, 5, 9}},  {{5, 11, 4}}, {{11, 10, 2}}, {{10, 7, 6}}, {{7, 1, 8}},
+                                            {{3, 9, 4}},  {{3, 4, 2}},  {{3, 2, 6}},   {{3, 6, 8}},  {{3, 8, 9}},
+                                            {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}},  {{8, 6, 7}},  {{9, 8, 1}}};
+  for(int l = 0; l < level; ++l) {
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> mid;
+    auto midpoint = [&](std::size_t a, std::size_t b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if(it != mid.end()) return it->second;
+      p.push_back((p[a] + p[b]).normalized());
+      mid[key] = p.size() - 1;
+      return p.size() - 1;
+    };
+    std::vector<AC::Input_surface::Face> g;
+    for(const auto& q : f) {
+      const std::size_t a = midpoint(q[0], q[1]), b = midpoint(q[1], q[2]), c = midpoint(q[2], q[0]);
+      g.push_back({{q[0], a, c}});
+      g.push_back({{q[1], b, a}});
+      g.push_back({{q[2], c, b}});
+      g.push_back({{a, b, c}});
+    }
+    f.swap(g);
+  }
+  return AC::Input_surface(p, f);
+}
+
+// an icosphere as a background (Euclidean lengths) with the trivial embedding: the vertices themselves,
+// and a conformal factor given by `cf` at each position
+struct Sphere_background {
+  AC::Input_surface surface;
+  AC::Intrinsic_triangulation itri;
+  AC::Spherical_embedding emb;
+
+  Sphere_background(int level, const std::function<double(const Eigen::Vector3d&)>& cf)
+    : surface(make_icosphere(level)), itri(surface, AC::compute_metric_square_roots(surface, AC::Uniform_metric()))
+  {
+    AC::compute_metric_edge_lengths(itri);
+    for(std::size_t v = 0; v < itri.number_of_vertices(); ++v) {
+      emb.position.push_back(itri.position(int(v)).normalized());
+      emb.conformal_factor.push_back(cf(emb.position.back()));
+    }
+  }
+};
+
+double uniform(const Eigen::Vector3d&) { return 1.0; }
+// a smooth field: rho = cf^2 = exp(2 z), e^4 (about 55) from the south pole to the north pole
+double graded(const Eigen::Vector3d& x) { return std::exp(x.z()); }
+
+// n independent uniformly distributed unit vectors
+std::vector<Point> random_sites(std::size_t n, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> N;
+  std::vector<Point> s;
+  for(std::size_t i = 0; i < n; ++i) s.push_back(Point(N(rng), N(rng), N(rng)).normalized());
+  return s;
+}
+
+double energy_of(const Domain& d, const std::vector<Point>& sites)
+{
+  std::vector<Domain::Cell> c;
+  d.integrate(sites, c);
+  double e = 0;
+  for(const auto& cell : c) e += cell.energy;
+  return e;
+}
+
+// the unit tangent vectors (e1, e2) at x
+std::pair<Point, Point> tangent_frame(const Point& x)
+{
+  const Point a = std::abs(x.x()) < 0.9 ? Point(1, 0, 0) : Point(0, 1, 0);
+  const Point e1 = (a - a.dot(x) * x).normalized();
+  return {e1, x.cross(e1)};
+}
+
+// the optional hooks of the constrained CVT: found on the sphere, absent on the flat domains (whose CVT is unchanged)
+static_assert(AC::internal::Has_project_to_domain<Domain>::value, "the sphere retracts trial points");
+static_assert(AC::internal::Has_project_to_tangent_plane<Domain>::value, "the sphere projects gradients");
+static_assert(!AC::internal::Has_project_to_domain<AC::Planar_domain_traits>::value, "the plane has no hook");
+static_assert(!AC::internal::Has_project_to_tangent_plane<AC::Planar_domain_traits>::value, "the plane has no hook");
+static_assert(!AC::internal::Has_project_to_domain<AC::Euclidean_periodic_domain_traits>::value, "the torus has no hook");
+static_assert(!AC::internal::Has_project_to_tangent_plane<AC::Euclidean_periodic_domain_traits>::value, "the torus has no hook");
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(total_mass_is_the_integral_of_the_density_and_cells_share_it)
+{
+  for(auto cf : {&uniform, &graded}) {
+    const Sphere_background bg(4, cf);
+    const Domain d(bg.itri, bg.emb, 2);
+    // the integral of the linear density over the chordal triangles, summed here directly
+    double area = 0, mass = 0;
+    for(std::size_t f = 0; f < bg.itri.number_of_faces(); ++f) {
+      const auto& c = bg.itri.face_vertices(f);
+      const Eigen::Vector3d a = bg.emb.position[c[0]], b = bg.emb.position[c[1]], e = bg.emb.position[c[2]];
+      const double A = 0.5 * (b - a).cross(e - a).norm();
+      area += A;
+      double rho = 0;
+      for(int k = 0; k < 3; ++k) rho += std::pow(bg.emb.conformal_factor[c[k]], 2) / 3;
+      mass += A * rho;
+    }
+    BOOST_TEST(d.number_of_degenerate_triangles() == 0u);
+    BOOST_TEST(std::abs(d.area() - area) < 1e-12 * area);
+    BOOST_TEST(std::abs(d.total_mass() - mass) < 1e-12 * mass);
+    BOOST_TEST(d.area() < 4 * pi);
+    BOOST_TEST(d.area() > 0.99 * 4 * pi);
+    if(cf == &uniform) BOOST_TEST(std::abs(d.total_mass() - d.area()) < 1e-12 * d.area());
+    // random sites split the mass exactly; every cell has mass and energy, its centroid inside the ball
+    const std::vector<Point> sites = random_sites(300, 7);
+    std::vector<Domain::Cell> cells;
+    d.integrate(sites, cells);
+    BOOST_TEST(cells.size() == sites.size());
+    double sum = 0;
+    for(std::size_t i = 0; i < cells.size(); ++i) {
+      BOOST_TEST(cells[i].mass > 0);
+      BOOST_TEST(cells[i].energy > 0);
+      BOOST_TEST(cells[i].centroid.norm() < 1.0);
+      BOOST_TEST(cells[i].centroid.normalized().dot(sites[i]) > 0.9);
+      sum += cells[i].mass;
+    }
+    BOOST_TEST(std::abs(sum - d.total_mass()) < 1e-10 * d.total_mass());
+    // the result does not depend on the number of threads, bit for bit
+    const Domain d1(bg.itri, bg.emb, 1), d3(bg.itri, bg.emb, 3);
+    std::vector<Domain::Cell> c1, c3;
+    d1.integrate(sites, c1);
+    d3.integrate(sites, c3);
+    bool same = true;
+    for(std::size_t i = 0; i < sites.size(); ++i)
+      same = same && c1[i].mass == cells[i].mass && c3[i].mass == cells[i].mass && c1[i].energy == cells[i].energy &&
+             c3[i].energy == cells[i].energy && c1[i].centroid == cells[i].centroid && c3[i].centroid == cells[i].centroid;
+    BOOST_TEST(same);
+    // a copy shares the background and integrates the same
+    const Domain copy = d;
+    std::vector<Domain::Cell> cc;
+    copy.integrate(sites, cc);
+    BOOST_TEST(cc[17].mass == cells[17].mass);
+  }
+  // the smallest cases: a single site takes everything, four sites of a tetrahedron a quarter each
+  const Sphere_background bg(3, &uniform);
+  const Domain d(bg.itri, bg.emb, 2);
+  std::vector<Domain::Cell> cells;
+  d.integrate({Point(0, 0, 1)}, cells);
+  BOOST_TEST(std::abs(cells[0].mass - d.total_mass()) < 1e-12 * d.total_mass());
+  BOOST_TEST(cells[0].centroid.norm() < 1e-3);
+  const double s = 1 / std::sqrt(3.0);
+  d.integrate({Point(s, s, s), Point(s, -s, -s), Point(-s, s, -s), Point(-s, -s, s)}, cells);
+  for(const auto& c : cells) BOOST_TEST(std::abs(c.mass - d.total_mass() / 4) < 0.01 * d.total_mass());
+}
+
+BOOST_AUTO_TEST_CASE(cells_match_a_brute_force_quadrature)
+{
+  const Sphere_background bg(2, &graded);
+  const Domain d(bg.itri, bg.emb, 2);
+  const std::vector<Point> sites = random_sites(40, 11);
+  std::vector<Domain::Cell> cells;
+  d.integrate(sites, cells);
+  // midpoint rule on every chordal triangle split into m^2 pieces, each piece given to the nearest site
+  const int m = 90;
+  std::vector<double> mass(sites.size(), 0.0), energy(sites.size(), 0.0);
+  std::vector<Eigen::Vector3d> moment(sites.size(), Eigen::Vector3d::Zero());
+  for(std::size_t f = 0; f < bg.itri.number_of_faces(); ++f) {
+    const auto& c = bg.itri.face_vertices(f);
+    const Eigen::Vector3d P[3] = {bg.emb.position[c[0]], bg.emb.position[c[1]], bg.emb.position[c[2]]};
+    double R[3];
+    for(int k = 0; k < 3; ++k) R[k] = std::pow(bg.emb.conformal_factor[c[k]], 2);
+    const double piece = 0.5 * (P[1] - P[0]).cross(P[2] - P[0]).norm() / (m * m);
+    auto add = [&](double a, double b) {  // barycentric (1 - a - b, a, b) of a piece's centroid
+      const Eigen::Vector3d y = (1 - a - b) * P[0] + a * P[1] + b * P[2];
+      const double rho = (1 - a - b) * R[0] + a * R[1] + b * R[2];
+      std::size_t best = 0;
+      for(std::size_t i = 1; i < sites.size(); ++i)
+        if(sites[i].dot(y) > sites[best].dot(y)) best = i;
+      mass[best] += rho * piece;
+      moment[best] += rho * piece * y;
+      energy[best] += rho * piece * (y - sites[best]).squaredNorm();
+    };
+    for(int i = 0; i < m; ++i)
+      for(int j = 0; i + j < m; ++j) {
+        add((i + 1.0 / 3) / m, (j + 1.0 / 3) / m);
+        if(i + j + 1 < m) add((i + 2.0 / 3) / m, (j + 2.0 / 3) / m);
+      }
+  }
+  for(std::size_t i : {0u, 5u, 13u, 21u, 38u}) {
+    const double h = std::sqrt(cells[i].mass);
+    BOOST_TEST_MESSAGE("cell " << i << ": mass " << cells[i].mass << " vs " << mass[i] << ", energy " << cells[i].energy << " vs "
+                               << energy[i]);
+    BOOST_TEST(std::abs(cells[i].mass - mass[i]) < 2e-3 * mass[i]);
+    BOOST_TEST((cells[i].centroid - moment[i] / mass[i]).norm() < 2e-3 * h);
+    BOOST_TEST(std::abs(cells[i].energy - energy[i]) < 3e-3 * energy[i]);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(gradient_matches_finite_differences_along_tangents)
+{
+  const Sphere_background bg(3, &graded);
+  const Domain d(bg.itri, bg.emb, 2);
+  const std::vector<Point> sites = d.initial_sites(120, 5);
+  std::vector<Domain::Cell> cells;
+  d.integrate(sites, cells);
+  const double h = 1e-6;
+  for(std::size_t i : {3u, 40u, 99u}) {
+    const auto frame = tangent_frame(sites[i]);
+    // the constrained gradient: 2 m (x - c) projected on the tangent plane
+    const Point g = d.project_to_tangent_plane(sites[i], Point(2 * cells[i].mass * (sites[i] - cells[i].centroid)));
+    BOOST_TEST(std::abs(g.dot(sites[i])) < 1e-15);
+    for(const Point& t : {frame.first, frame.second}) {
+      std::vector<Point> xp = sites, xm = sites;
+      xp[i] = std::cos(h) * sites[i] + std::sin(h) * t;  // a geodesic through the site
+      xm[i] = std::cos(h) * sites[i] - std::sin(h) * t;
+      const double fd = (energy_of(d, xp) - energy_of(d, xm)) / (2 * h);
+      BOOST_TEST_MESSAGE("site " << i << ": finite difference " << fd << ", gradient " << g.dot(t));
+      BOOST_TEST(std::abs(fd - g.dot(t)) < 1e-5 * (std::abs(g.dot(t)) + cells[i].mass * std::sqrt(cells[i].mass)));
+    }
+  }
+  // a moved site: its gradient in space is not tangent, its projection is
+  BOOST_TEST(std::abs((2 * cells[3].mass * (sites[3] - cells[3].centroid)).dot(sites[3])) > 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(lloyd_and_lbfgs_give_uniform_cells_with_a_monotone_energy)
+{
+  const Sphere_background bg(4, &uniform);
+  const Domain d(bg.itri, bg.emb, 2);
+  const std::size_t n = 300;
+  const std::vector<Point> start = d.initial_sites(n, 1);
+  for(const auto& p : start) BOOST_TEST(d.contains(p));
+  auto mass_spread = [&](const std::vector<Point>& x) {  // max / min and standard deviation / mean of the masses
+    std::vector<Domain::Cell> cells;
+    d.integrate(x, cells);
+    double lo = 1e300, hi = 0, mean = 0, var = 0;
+    for(const auto& c : cells) {
+      lo = std::min(lo, c.mass);
+      hi = std::max(hi, c.mass);
+      mean += c.mass / double(cells.size());
+    }
+    for(const auto& c : cells) var += (c.mass - mean) * (c.mass - mean) / double(cells.size());
+    return std::make_pair(hi / lo, std::sqrt(var) / mean);
+  };
+  const auto spread0 = mass_spread(start);
+  BOOST_TEST_MESSAGE("initial sites: mass ratio max/min " << spread0.first << ", deviation " << spread0.second);
+  std::map<AC::Cvt_method, double> final_energy;
+  for(AC::Cvt_method method : {AC::Cvt_method::LLOYD, AC::Cvt_method::LBFGS}) {
+    std::vector<Point> x = start;
+    const AC::Cvt_report rep =
+        AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(50u).cvt_method(method));
+    BOOST_TEST(rep.iterations == 50u);
+    bool monotone = true;
+    for(std::size_t k = 1; k < rep.energy.size(); ++k) monotone = monotone && rep.energy[k] <= rep.energy[k - 1];
+    BOOST_TEST(monotone);
+    BOOST_TEST(rep.energy.back() < 0.95 * rep.energy.front());
+    for(const auto& p : x) BOOST_TEST(std::abs(p.norm() - 1) < 1e-12);
+    const auto spread = mass_spread(x);
+    BOOST_TEST_MESSAGE((method == AC::Cvt_method::LLOYD ? "Lloyd" : "L-BFGS")
+                       << ": energy " << rep.energy.front() << " -> " << rep.energy.back() << " after " << rep.iterations
+                       << " iterations (" << rep.energy_evaluations << " integrations, " << rep.lloyd_fallbacks
+                       << " fallbacks), relative gradient " << rep.gradient_norm << ", mass ratio max/min " << spread.first
+                       << ", deviation " << spread.second);
+    // a converged CVT keeps a few 5-7 defects whose cells are 15 % smaller or larger: max/min about 1.35
+    BOOST_TEST(spread.first < 1.5);
+    BOOST_TEST(spread.second < 0.06);
+    BOOST_TEST(spread.second < 0.5 * spread0.second);
+    final_energy[method] = rep.energy.back();
+  }
+  BOOST_TEST(final_energy[AC::Cvt_method::LBFGS] < final_energy[AC::Cvt_method::LLOYD]);
+}
+
+BOOST_AUTO_TEST_CASE(a_graded_density_gives_cell_areas_following_rho_to_the_minus_one_half)
+{
+  const Sphere_background bg(4, &graded), flat(4, &uniform);
+  const Domain d(bg.itri, bg.emb, 2), area_of(flat.itri, flat.emb, 2);
+  std::vector<Point> x = d.initial_sites(400, 2);
+  const AC::Cvt_report rep = AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(60u));
+  BOOST_TEST(rep.energy.back() < rep.energy.front());
+  // the areas of the cells: the same sites with the density 1
+  std::vector<Domain::Cell> cells;
+  area_of.integrate(x, cells);
+  // least-squares slope of log(area) against log(rho) at the sites: -1/2 for a CVT in 2D
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for(std::size_t i = 0; i < x.size(); ++i) {
+    const double lr = std::log(std::pow(graded(x[i]), 2)), la = std::log(cells[i].mass);
+    sx += lr;
+    sy += la;
+    sxx += lr * lr;
+    sxy += lr * la;
+  }
+  const double m = double(x.size()), slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+  BOOST_TEST_MESSAGE("graded density: slope of log(cell area) against log(rho) " << slope << " (expected -0.5)");
+  BOOST_TEST(slope < -0.4);
+  BOOST_TEST(slope > -0.6);
+  // denser sites in the north
+  std::size_t north = 0;
+  for(const auto& p : x) north += p.z() > 0;
+  BOOST_TEST(north > 0.65 * x.size());
+}
+
+BOOST_AUTO_TEST_CASE(the_dual_is_a_closed_outward_genus_zero_surface)
+{
+  // (with few sites the graded density's CVT leaves the south empty: all sites in one hemisphere, refused below)
+  const Sphere_background bg(3, &graded), flat(3, &uniform);
+  const Domain graded_domain(bg.itri, bg.emb, 2), uniform_domain(flat.itri, flat.emb, 2);
+  for(std::size_t n : {4u, 5u, 37u, 250u}) {
+    const Domain& d = n < 10 ? uniform_domain : graded_domain;
+    std::vector<Point> x = d.initial_sites(n, 3);
+    AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(10u));
+    const auto tris = d.dual_triangles(x);
+    BOOST_TEST(tris.size() == 2 * n - 4);
+    const test::Mesh_counts mc = test::count_mesh(x, tris);
+    BOOST_TEST(mc.boundary_edges == 0u);
+    BOOST_TEST(mc.euler == 2);
+    std::vector<char> used(n, 0);
+    for(const auto& t : tris) {
+      BOOST_TEST(x[t[0]].dot(x[t[1]].cross(x[t[2]])) > 0);  // counterclockwise seen from outside
+      for(std::size_t k : t) used[k] = 1;
+    }
+    BOOST_TEST(std::count(used.begin(), used.end(), 1) == int(n));
+    // a valid, consistently oriented, connected surface of genus 0 whose normals point outwards
+    std::vector<AC::Input_surface::Face> faces(tris.begin(), tris.end());
+    const AC::Input_surface out(x, faces);
+    BOOST_TEST(out.genus() == 0);
+    double volume = 0;
+    for(const auto& t : tris) volume += x[t[0]].dot(x[t[1]].cross(x[t[2]])) / 6;
+    BOOST_TEST(volume > 0);
+    // stage 5 on the icosphere itself: every vertex on the input, a closed outward genus-0 surface
+    const AC::Remeshed_surface mesh = AC::extract_dual_mesh(bg.surface, bg.itri, d, x);
+    BOOST_TEST(mesh.points.size() == n);
+    BOOST_TEST(mesh.faces.size() == 2 * n - 4);
+    std::vector<AC::Input_surface::Face> mesh_faces(mesh.faces.begin(), mesh.faces.end());
+    BOOST_TEST(AC::Input_surface(mesh.points, mesh_faces).genus() == 0);
+    bool outward = true;
+    double off_surface = 0;
+    for(const auto& f : mesh.faces) {
+      const Eigen::Vector3d a = mesh.points[f[0]], b = mesh.points[f[1]], c = mesh.points[f[2]];
+      outward = outward && (b - a).cross(c - a).dot(a + b + c) > 0;
+    }
+    for(std::size_t i = 0; i < n; ++i) off_surface = std::max(off_surface, (mesh.points[i] - mesh.surface_points[i].position).norm());
+    BOOST_TEST(outward);
+    BOOST_TEST(off_surface == 0.0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(background_location_gives_the_site_back)
+{
+  const Sphere_background bg(3, &graded);
+  const Domain d(bg.itri, bg.emb, 2);
+  std::vector<Point> probes = d.initial_sites(500, 4);
+  const std::vector<Point> random = random_sites(500, 9);
+  probes.insert(probes.end(), random.begin(), random.end());
+  for(std::size_t v = 0; v < bg.emb.position.size(); v += 7) probes.push_back(bg.emb.position[v]);  // on background vertices
+  for(std::size_t f = 0; f < bg.itri.number_of_faces(); f += 13) {  // on background edges
+    const auto& c = bg.itri.face_vertices(f);
+    probes.push_back((bg.emb.position[c[0]] + bg.emb.position[c[1]]).normalized());
+  }
+  double worst = 0;
+  bool all_found = true, all_valid = true;
+  for(const Point& p : probes) {
+    int face = -1;
+    Eigen::Vector3d bary(-1, -1, -1);
+    const bool found = d.background_location(0, p, face, bary);
+    all_found = all_found && found && face >= 0 && face < int(bg.itri.number_of_faces());
+    if(!found) continue;
+    all_valid = all_valid && bary.minCoeff() >= 0 && std::abs(bary.sum() - 1) < 1e-14;
+    const auto& c = bg.itri.face_vertices(std::size_t(face));
+    const Eigen::Vector3d y = bary[0] * bg.emb.position[c[0]] + bary[1] * bg.emb.position[c[1]] + bary[2] * bg.emb.position[c[2]];
+    worst = std::max(worst, (y.normalized() - p).norm());
+  }
+  BOOST_TEST(all_found);
+  BOOST_TEST(all_valid);
+  BOOST_TEST(worst < 1e-12);
+  // a site on a background vertex is that vertex
+  int face = -1;
+  Eigen::Vector3d bary;
+  BOOST_TEST(d.background_location(0, bg.emb.position[17], face, bary));
+  BOOST_TEST(bary.maxCoeff() > 1 - 1e-12);
+  // a site of any length is located by its direction; a zero or NaN site is not located
+  BOOST_TEST(d.background_location(0, 3.0 * probes[0], face, bary));
+  BOOST_TEST(!d.background_location(0, Point::Zero(), face, bary));
+  BOOST_TEST(!d.background_location(0, Point(std::numeric_limits<double>::quiet_NaN(), 0, 1), face, bary));
+}
+
+BOOST_AUTO_TEST_CASE(voronoi_cells_tile_the_sphere)
+{
+  const Sphere_background bg(3, &uniform);
+  const Domain d(bg.itri, bg.emb, 2);
+  const std::vector<Point> x = d.initial_sites(150, 6);
+  const auto cells = d.voronoi_cells(x);
+  BOOST_TEST(cells.size() == x.size());
+  double total = 0;
+  bool ok = true;
+  for(std::size_t i = 0; i < x.size(); ++i) {
+    ok = ok && cells[i].size() >= 3;
+    // solid angle of the fan of spherical triangles (site, a, b) (Van Oosterom and Strackee)
+    for(std::size_t k = 0; k < cells[i].size(); ++k) {
+      const Point& a = cells[i][k];
+      const Point& b = cells[i][(k + 1) % cells[i].size()];
+      ok = ok && std::abs(a.norm() - 1) < 1e-12;
+      // every vertex of the cell is equidistant from the site and from a neighbour: not nearer to another site
+      for(const Point& s : x) ok = ok && s.dot(a) <= x[i].dot(a) + 1e-12;
+      total += 2 * std::atan2(x[i].dot(a.cross(b)), 1 + x[i].dot(a) + a.dot(b) + b.dot(x[i]));
+    }
+  }
+  BOOST_TEST(ok);
+  BOOST_TEST(std::abs(total - 4 * pi) < 1e-9);
+}
+
+BOOST_AUTO_TEST_CASE(degenerate_sites_and_inputs_name_the_problem)
+{
+  const Sphere_background bg(3, &uniform);
+  const Domain d(bg.itri, bg.emb, 2);
+  auto message_of = [](auto&& f) -> std::string {
+    try {
+      f();
+    } catch(const AC::Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  std::vector<Point> x = d.initial_sites(60, 8);
+  // coincident sites, exactly and within 1e-12
+  std::vector<Point> twins = x;
+  twins[9] = twins[4];
+  std::string m = message_of([&] { d.dual_triangles(twins); });
+  BOOST_TEST(m.find("site 9 coincides with site 4") != std::string::npos);
+  twins[9] = (twins[4] + Point(1e-12, 0, 0)).normalized();
+  m = message_of([&] { d.dual_triangles(twins); });
+  BOOST_TEST(m.find("coincides") != std::string::npos);
+  // a coincident site keeps no cell; the mass is still all there
+  std::vector<Domain::Cell> cells;
+  d.integrate(twins, cells);
+  BOOST_TEST((cells[9].mass == 0 || cells[4].mass == 0));
+  double sum = 0;
+  for(const auto& c : cells) sum += c.mass;
+  BOOST_TEST(std::abs(sum - d.total_mass()) < 1e-10 * d.total_mass());
+  // too few sites
+  m = message_of([&] { d.dual_triangles({x[0], x[1], x[2]}); });
+  BOOST_TEST(m.find("too few") != std::string::npos);
+  BOOST_CHECK_THROW(d.initial_sites(3, 0), AC::Invalid_input);
+  // all sites on a small cap around the north pole: the triangulation does not close
+  std::vector<Point> cap;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> U(-0.2, 0.2);
+  for(int i = 0; i < 30; ++i) cap.push_back(Point(U(rng), U(rng), 1).normalized());
+  m = message_of([&] { d.dual_triangles(cap); });
+  BOOST_TEST(m.find("one hemisphere") != std::string::npos);
+  // the cap's cells still split the whole mass (the far side goes to the border sites)
+  d.integrate(cap, cells);
+  sum = 0;
+  for(const auto& c : cells) sum += c.mass;
+  BOOST_TEST(std::abs(sum - d.total_mass()) < 1e-10 * d.total_mass());
+  // all sites on the equator
+  std::vector<Point> ring;
+  for(int i = 0; i < 12; ++i) ring.push_back(Point(std::cos(2 * pi * i / 12), std::sin(2 * pi * i / 12), 0));
+  m = message_of([&] { d.dual_triangles(ring); });
+  BOOST_TEST(m.find("great circle") != std::string::npos);
+  d.integrate(ring, cells);
+  sum = 0;
+  for(const auto& c : cells) sum += c.mass;
+  BOOST_TEST(std::abs(sum - d.total_mass()) < 1e-10 * d.total_mass());
+  BOOST_TEST(std::abs(cells[0].mass - d.total_mass() / 12) < 0.01 * d.total_mass() / 12);
+  // a site without a direction
+  std::vector<Point> bad = x;
+  bad[2] = Point::Zero();
+  m = message_of([&] { d.dual_triangles(bad); });
+  BOOST_TEST(m.find("site 2 is zero or not finite") != std::string::npos);
+  bad[2] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  BOOST_CHECK_THROW(d.dual_triangles(bad), AC::Convergence_failure);
+  d.integrate(bad, cells);
+  BOOST_TEST(cells[2].mass == 0);
+  BOOST_TEST(!d.contains(bad[2]));
+  BOOST_TEST(!d.contains(Point(0, 0, 1.001)));
+  BOOST_TEST(d.contains(Point(0, 0, 1)));
+  // an embedding that does not fit the triangulation
+  AC::Spherical_embedding wrong = bg.emb;
+  wrong.conformal_factor.pop_back();
+  m = message_of([&] { Domain(bg.itri, wrong, 1); });
+  BOOST_TEST(m.find("conformal factors") != std::string::npos);
+  wrong = bg.emb;
+  wrong.position[5] = Point::Zero();
+  m = message_of([&] { Domain(bg.itri, wrong, 1); });
+  BOOST_TEST(m.find("vertex 5") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(integration_time_on_a_fine_background)
+{
+  // 20480 chordal triangles, 1000 sites, 2 threads: the size of a 10k-vertex remesh to 1000 vertices
+  const Sphere_background bg(5, &graded);
+  auto t0 = std::chrono::steady_clock::now();
+  const Domain d(bg.itri, bg.emb, 2);
+  const double build = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<Point> x = d.initial_sites(1000, 0);
+  AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(5u));
+  std::vector<Domain::Cell> cells;
+  const int reps = 30;
+  t0 = std::chrono::steady_clock::now();
+  for(int r = 0; r < reps; ++r) d.integrate(x, cells);
+  const double each = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / reps;
+  double sum = 0;
+  for(const auto& c : cells) sum += c.mass;
+  BOOST_TEST(std::abs(sum - d.total_mass()) < 1e-10 * d.total_mass());
+  // 50 iterations of each method from the same start
+  std::vector<Point> y;
+  std::map<AC::Cvt_method, AC::Cvt_report> report;
+  std::map<AC::Cvt_method, double> ms;
+  for(AC::Cvt_method method : {AC::Cvt_method::LLOYD, AC::Cvt_method::LBFGS}) {
+    y = d.initial_sites(1000, 0);
+    t0 = std::chrono::steady_clock::now();
+    report[method] =
+        AC::weighted_centroidal_Voronoi_tessellation(d, y, 0, AC::parameters::number_of_iterations(50u).cvt_method(method));
+    ms[method] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const AC::Cvt_report& lloyd = report[AC::Cvt_method::LLOYD];
+  const AC::Cvt_report& lbfgs = report[AC::Cvt_method::LBFGS];
+  BOOST_TEST(lbfgs.energy.back() < lloyd.energy.back());
+  BOOST_TEST(lbfgs.lloyd_fallbacks < 5u);
+  t0 = std::chrono::steady_clock::now();
+  int face = -1;
+  Eigen::Vector3d bary;
+  bool located = true;
+  for(const Point& p : y) located = located && d.background_location(0, p, face, bary);
+  const double locate = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  BOOST_TEST(located);
+  BOOST_TEST(d.dual_triangles(y).size() == 2 * y.size() - 4);
+  BOOST_TEST_MESSAGE("20480 triangles, 1000 sites, 2 threads: construction " << build << " ms, integrate() " << each
+                                                                              << " ms, 1000 locations " << locate << " ms");
+  BOOST_TEST_MESSAGE("50 iterations from the same start: Lloyd energy " << lloyd.energy.front() << " -> " << lloyd.energy.back()
+                                                                      << " in " << ms[AC::Cvt_method::LLOYD] << " ms, L-BFGS "
+                                                                      << lbfgs.energy.back() << " in " << ms[AC::Cvt_method::LBFGS]
+                                                                      << " ms (" << lbfgs.energy_evaluations << " integrations, "
+                                                                      << lbfgs.lloyd_fallbacks << " fallbacks)");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
