@@ -11,6 +11,7 @@
 
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
+#include <Aniso_conformal/make_ellipsoid.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -234,5 +235,36 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_one_surface_on_the_flat_torus)
   BOOST_TEST(bad.status == 2);
   BOOST_TEST(bad.err.find("plane domain does not fit") != std::string::npos);
   BOOST_TEST(bad.err.find("genus 1") != std::string::npos);
+  BOOST_TEST(!exists(mesh));
+}
+
+BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_zero_surface_on_the_sphere)
+{
+  BOOST_TEST((parse({"--input", "e.off", "--domain", "sphere", "--vertices", "10"}).parametric_domain ==
+              Aniso_conformal::Parametric_domain::SPHERE));
+
+  const std::string in = out_dir + "/cli_ellipsoid.off", mesh = out_dir + "/cli_ellipsoid_out.off",
+                    report = out_dir + "/cli_ellipsoid.json";
+  const Aniso_conformal::Input_surface ellipsoid = Aniso_conformal::make_ellipsoid(3);
+  Aniso_conformal::IO::write_polygon_soup(in, ellipsoid.points(), ellipsoid.faces());
+  std::remove(mesh.c_str());
+  const Run r = run("--input " + in + " --metric curvature --stretch-max 10 --vertices 300 --output " + mesh + " --report " + report);
+  BOOST_TEST(r.status == 0);
+  BOOST_TEST(r.out.find("domain sphere") != std::string::npos);
+  BOOST_TEST(r.out.find("angle distortion") != std::string::npos);
+  const Aniso_conformal::Input_surface out = Aniso_conformal::IO::read_triangle_mesh(mesh);
+  BOOST_TEST(out.number_of_vertices() == 300u);
+  BOOST_TEST(out.genus() == 0);
+  BOOST_TEST(out.boundary_loops().empty());
+  const std::string json = slurp(report);
+  BOOST_TEST(json.find("\"domain\": \"sphere\"") != std::string::npos);
+  BOOST_TEST(json.find("\"angle_distortion_mean_degrees\"") != std::string::npos);
+
+  // the flat torus does not fit a genus-0 surface: exit 2, nothing written
+  std::remove(mesh.c_str());
+  const Run bad = run("--input " + in + " --domain flat-torus --vertices 300 --output " + mesh);
+  BOOST_TEST(bad.status == 2);
+  BOOST_TEST(bad.err.find("flat-torus domain does not fit") != std::string::npos);
+  BOOST_TEST(bad.err.find("genus 0") != std::string::npos);
   BOOST_TEST(!exists(mesh));
 }

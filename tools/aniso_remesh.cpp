@@ -136,6 +136,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 result.adjustment.flips, result.adjustment.splits, result.adjustment.repaired_triangles,
                 result.conformal_iterations, result.conformal_residual, result.conformal_flips, result.cvt.iterations,
                 o.cvt.c_str());
+    if(result.domain == "sphere")
+      std::printf("sphere       angle distortion of the conformal map: mean %.3f deg, max %.3f deg\n",
+                  result.angle_distortion[0], result.angle_distortion[1]);
     std::printf("time         background %.3f s, total %.3f s (", background_seconds, background_seconds + result.total_seconds());
     for(int s = 0; s < AC::number_of_stages; ++s)
       std::printf("%s%s %.3f", s ? ", " : "", AC::stage_name(AC::Stage(s)), result.seconds[s]);
