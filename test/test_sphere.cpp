@@ -497,6 +497,47 @@ BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)
   BOOST_TEST(m.find("too small on the sphere") != std::string::npos);
 }
 
+// What happens to a thin or folded genus-0 surface, each measured: a typed exception whose message
+// names the cause and holds no NaN, the input untouched.
+BOOST_AUTO_TEST_CASE(thin_needles_pancakes_and_folds_are_refused_with_the_reason)
+{
+  struct Case {
+    const char* name;
+    AC::Input_surface surface;
+    const char* expected;
+  };
+  std::vector<Case> cases;
+  // a needle, 10 times longer than wide: its ends shrink below double precision on the sphere
+  cases.push_back({"needle 1 x 0.1 x 0.1", AC::make_ellipsoid(4, 1, 0.1, 0.1), "too small on the sphere"});
+  // a pancake 1e-3 thick: the triangles across its rim are slivers that the solve cannot keep open
+  cases.push_back({"pancake 1e-3", AC::make_ellipsoid(4, 1, 1, 1e-3), "too thin or sharply folded"});
+  // a pancake flat to rounding level (the midpoint projection meets degenerate faces: no NaN may leak)
+  cases.push_back({"pancake 1e-9", AC::make_ellipsoid(4, 1, 1, 1e-9), "did not terminate"});
+  // a self-intersecting fold: the cap x > 0.5 pushed back through the far side; the intrinsic solve does
+  // not see the intersection, the output is refused at the 180-degree crease
+  {
+    const AC::Input_surface e = AC::make_ellipsoid(4);
+    std::vector<Eigen::Vector3d> points = e.points();
+    for(Eigen::Vector3d& p : points)
+      if(p.x() > 0.5) p.x() = 0.5 - 3 * (p.x() - 0.5);
+    cases.push_back({"self-intersecting fold", AC::Input_surface(points, e.faces()), "inverted or degenerate triangles"});
+  }
+  for(const Case& c : cases) {
+    const std::vector<Eigen::Vector3d> before = c.surface.points();
+    AC::Remeshing_result r;
+    std::string m = "(accepted)";
+    try {
+      AC::remesh(c.surface, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(300)));
+    } catch(const AC::Convergence_failure& e) {
+      m = e.what();
+    }
+    BOOST_TEST_MESSAGE(c.name << ": " << m);
+    BOOST_TEST(m.find(c.expected) != std::string::npos, c.name << ": " << m);
+    BOOST_TEST(m.find("nan") == std::string::npos, c.name);
+    BOOST_TEST((c.surface.points() == before), c.name);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bad_genus_zero_inputs_name_the_problem)
 {
   const AC::Input_surface s = AC::make_ellipsoid(2);

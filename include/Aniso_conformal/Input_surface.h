@@ -167,10 +167,30 @@ public:
     Eigen::Vector3d e1 = m_points[m_faces[f][1]] - a, e2 = m_points[m_faces[f][2]] - a, w = q - a;
     double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), w1 = w.dot(e1), w2 = w.dot(e2);
     double det = d11 * d22 - d12 * d12;
-    double b1 = (d22 * w1 - d12 * w2) / det, b2 = (d11 * w2 - d12 * w1) / det;
-    Eigen::Vector3d b(1 - b1 - b2, b1, b2);
-    b = b.cwiseMax(0.0);
-    return b / b.sum();
+    if(det > 1e-12 * d11 * d22) {
+      double b1 = (d22 * w1 - d12 * w2) / det, b2 = (d11 * w2 - d12 * w1) / det;
+      Eigen::Vector3d b(1 - b1 - b2, b1, b2);
+      b = b.cwiseMax(0.0);
+      if(b.sum() > 0 && b.allFinite()) return b / b.sum();
+    }
+    // a (nearly) degenerate triangle has no reliable plane: the closest point on its edges, whose
+    // coordinates are well defined (a surface flattened to rounding level must not yield NaN)
+    Eigen::Vector3d best(1, 0, 0);
+    double best_d = (q - a).squaredNorm();
+    for(int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& p0 = m_points[m_faces[f][k]];
+      const Eigen::Vector3d e = m_points[m_faces[f][(k + 1) % 3]] - p0;
+      const double ee = e.squaredNorm();
+      const double t = ee > 0 ? std::clamp((q - p0).dot(e) / ee, 0.0, 1.0) : 0.0;
+      const double d = (p0 + t * e - q).squaredNorm();
+      if(d < best_d) {
+        best_d = d;
+        best.setZero();
+        best[k] = 1 - t;
+        best[(k + 1) % 3] = t;
+      }
+    }
+    return best;
   }
   /// @}
 

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -129,7 +130,8 @@ inline bool mollify(Intrinsic_triangulation& itri, Edge_adjustment_report& repor
   }
   std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
   const double median = lengths[lengths.size() / 2];
-  report.mollification = eps / median;
+  // a zero or non-finite median (a surface flat to rounding level) must not put NaN in the message
+  report.mollification = median > 0 ? eps / median : std::numeric_limits<double>::infinity();
   if(!(report.mollification <= 0.1)) return false;
   for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
     if(itri.is_edge_representative(h)) itri.set_length(h, itri.length(h) + eps);

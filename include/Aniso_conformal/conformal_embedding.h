@@ -125,7 +125,7 @@ Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
   }
   if(inverted > 0)
     throw Convergence_failure("conformal embedding: the layout has " + std::to_string(inverted) +
-                                  " inverted or flat triangles (the metric is too wild for this background)",
+                                  " inverted or flat triangles (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               double(inverted));
   emb.conformal_factor.resize(nv);
   for(int v = 0; v < nv; ++v) emb.conformal_factor[v] = adjusted_area[v] / domain_area[v];

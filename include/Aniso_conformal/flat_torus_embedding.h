@@ -107,7 +107,7 @@ Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
   internal::solve_flat_conformal_metric(itri, fixed, np, "flat torus embedding", emb);
   if(emb.degenerate_triangles > 0)
     throw Convergence_failure("flat torus embedding: " + std::to_string(emb.degenerate_triangles) +
-                                  " triangles are flat in the solution (the metric is too wild for this background)",
+                                  " triangles are flat in the solution (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               double(emb.degenerate_triangles));
 
   // ---- cut and unfold through the cotree

@@ -137,7 +137,7 @@ inline double spherical_triangle_area(const Eigen::Vector3d& a, const Eigen::Vec
  * \throws Convergence_failure if Newton's method or the normalisation does not converge within its bound
  *         (with the angle-sum error or the centroid offset reached), or a triangle is flat in the planar
  *         metric, or a chordal triangle is inverted or flat, or the triangles cover the sphere more than
- *         once (the metric is too wild for this background)
+ *         once (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)
  */
 template <typename NamedParameters = parameters::Default_named_parameters>
 Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const NamedParameters& np = parameters::default_values())
@@ -217,7 +217,7 @@ Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const Nam
   emb.flips += delaunay_flips;
   if(emb.degenerate_triangles > 0)
     throw Convergence_failure("spherical embedding: " + std::to_string(emb.degenerate_triangles) +
-                                  " triangles are flat in the planar metric (the metric is too wild for this background)",
+                                  " triangles are flat in the planar metric (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               double(emb.degenerate_triangles));
 
   // unfold the disk breadth-first (every face but the star of p), each vertex once
@@ -360,12 +360,12 @@ Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const Nam
                               double(tiny));
   if(inverted > 0)
     throw Convergence_failure("spherical embedding: the layout has " + std::to_string(inverted) +
-                                  " inverted or flat triangles on the sphere (the metric is too wild for this background)",
+                                  " inverted or flat triangles on the sphere (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               double(inverted));
   // every triangle is positive, so the areas add up to 4 pi times the number of times the sphere is covered
   if(!(std::abs(covered - 4 * pi) <= 1e-6 * 4 * pi))
     throw Convergence_failure("spherical embedding: the triangles cover the sphere " + std::to_string(covered / (4 * pi)) +
-                                  " times instead of once (the metric is too wild for this background)",
+                                  " times instead of once (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               std::abs(covered - 4 * pi));
   emb.conformal_factor.resize(std::size_t(nv));
   for(int v = 0; v < nv; ++v) emb.conformal_factor[std::size_t(v)] = adjusted[std::size_t(v)] / chordal[std::size_t(v)];
