@@ -6,12 +6,15 @@
 // Usage: bench_paper [--runs R] [--output FILE.md] [--quick] [--scaling]
 //   --quick: one small case, checked against loose bounds (the CTest smoke run of this harness);
 //   --scaling: the Table 2 cyclide at growing input sizes (25920, 100k, 400k vertices, 8000 output) and
-//              output sizes (1k, 8k, 32k from the 100k input), to show how each stage grows.
+//              output sizes (1k, 8k, 32k from the 100k input), then the Fig. 10 ellipsoid likewise (10k, 41k,
+//              164k input vertices with 1000 output; 1k, 4k, 16k output from the 41k input), to show how
+//              each stage grows on the flat torus and on the sphere.
 
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Curvature_metric.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
+#include <Aniso_conformal/make_ellipsoid.h>
 #include <Aniso_conformal/Image_metric.h>
 #include <Aniso_conformal/IO/read_image.h>
 #include <Aniso_conformal/Paper_metrics.h>
@@ -123,6 +126,12 @@ Case cyclide_case(const std::string& name, const std::string& fig, std::size_t n
                       smoothing);
 }
 
+// The paper's Fig. 10 ellipsoid (semi-axes 1, 0.6, 0.4) at icosphere level L, curvature metric bound 10
+Case ellipsoid_case(const std::string& name, int level, std::size_t n, double pp, double pc, std::size_t pin)
+{
+  return surface_case(name, "10", [level]() { return AC::make_ellipsoid(level); }, 10, n, 100, pp, pc, pin);
+}
+
 Measure measure(const Case& c, int runs)
 {
   std::vector<Measure> all;
@@ -169,6 +178,7 @@ int main(int argc, char** argv)
     if(quick) {
       cases.push_back(analytic_case("Fig. 6 (quick)", "6", AC::make_analytic_metric_2(AC::Fig6_metric()), 200, 10, 388.11, 5112));
       cases.push_back(cyclide_case("cyclide 36x24 (quick)", "11", 36, 24, 29, 300, 100, 36, 274.10, 25920));
+      cases.push_back(ellipsoid_case("ellipsoid level 3 (quick)", 3, 300, 225, 182, 10242));
       runs = 1;
     } else if(scaling) {
       // input size at 8000 output vertices, then output size from the 100k input (the paper's Table 2 metric)
@@ -177,6 +187,12 @@ int main(int argc, char** argv)
       cases.push_back(cyclide_case("cyclide 720x576, 8k out", "11", 720, 576, 29, 8000, 100, 0, 0, 0));
       cases.push_back(cyclide_case("cyclide 360x288, 1k out", "11", 360, 288, 29, 1000, 100, 0, 0, 0));
       cases.push_back(cyclide_case("cyclide 360x288, 32k out", "11", 360, 288, 29, 32000, 100, 0, 0, 0));
+      // the sphere: the Fig. 10 ellipsoid at growing input sizes (levels 5, 6, 7), then growing outputs
+      cases.push_back(ellipsoid_case("ellipsoid level 5, 1k out", 5, 1000, 0, 0, 10242));
+      cases.push_back(ellipsoid_case("ellipsoid level 6, 1k out", 6, 1000, 0, 0, 0));
+      cases.push_back(ellipsoid_case("ellipsoid level 7, 1k out", 7, 1000, 0, 0, 0));
+      cases.push_back(ellipsoid_case("ellipsoid level 6, 4k out", 6, 4000, 0, 0, 0));
+      cases.push_back(ellipsoid_case("ellipsoid level 6, 16k out", 6, 16000, 0, 0, 0));
     } else {
       cases.push_back(analytic_case("2D varying metric", "6", AC::make_analytic_metric_2(AC::Fig6_metric()), 1000, 10, 388.11, 5112));
       cases.push_back(analytic_case("2D circular metric", "7", AC::make_analytic_metric_2(AC::Circular_metric()), 4000, 34, 848.29, 25717));
@@ -190,6 +206,17 @@ int main(int argc, char** argv)
       cases.push_back(cyclide_case("cyclide 1, bound 29, no smoothing (realised [1, 29])", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920, 0));
       cases.push_back(cyclide_case("cyclide 1, bound 50 (beyond the paper; realised [1, 4.7])", "11", 180, 144, 50, 8000, 100, 0, 0, 25920));
       cases.push_back(cyclide_case("cyclide 2, bound 18", "15", 180, 120, 18, 1000, 100, 24, 39.15, 21600));
+      // Fig. 10: the ellipsoid through the sphere (paper: 225 s embedding + 182 s CVT), and a real genus-0 model
+      cases.push_back(ellipsoid_case("ellipsoid (1, 0.6, 0.4), bound 10 (realised [1, 2.5])", 5, 1000, 225, 182, 10242));
+      // the short semi-axis 0.1 makes the curvature ratio reach 100: unsmoothed, the stretch spans [1, 10]
+      cases.push_back(surface_case("ellipsoid (1, 0.6, 0.1), bound 10, no smoothing (realised [1, 10])", "10",
+                                   []() { return AC::make_ellipsoid(5, 1, 0.6, 0.1); }, 10, 1000, 100, 225, 182, 10242, 0));
+      cases.push_back(surface_case("bear (genus 0), bound 5", "-",
+                                   [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/bear.off"); }, 5, 1000, 100,
+                                   0, 0, 0));
+      cases.push_back(surface_case("bear (genus 0), bound 5", "-",
+                                   [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/bear.off"); }, 5, 4000, 100,
+                                   0, 0, 0));
       // a real genus-1 model standing in for the Kitten (AIM@SHAPE, not redistributable): CGAL's knot1
       cases.push_back(surface_case("knot1 (genus 1; Kitten: 134438 V, 5000 out)", "12",
                                    [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/knot1.off"); }, 5, 1000, 100,
