@@ -95,8 +95,9 @@ struct Flat_conformal_solution {
  * flip bound is hit (Delaunay flips terminate in exact arithmetic, so hitting that bound means rounding
  * made them cycle). Where `keep_star` is given, no flip touches the star of a vertex it marks (no edge
  * at that vertex nor opposite it is flipped), so that star stays as it is (the puncture of the sphere).
- * Where `fixed_u` is given, the fixed vertices take its values instead of 0 (Dirichlet data); the first
- * flip pass still uses u = 0, so that the conformal class is that of the input metric.
+ * Where `fixed_u` is given, every vertex starts from its value instead of 0: Dirichlet data at the fixed
+ * vertices, the initial guess at the free ones; the first flip pass still uses u = 0, so that the
+ * conformal class is that of the input metric.
  */
 template <typename Visitor>
 Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itri, const std::vector<char>& fixed,
@@ -115,9 +116,7 @@ Flat_conformal_solution solve_flat_conformal_metric(Intrinsic_triangulation& itr
   Flat_conformal_solution sol;
   sol.u.assign(nv, 0.0);
   const std::vector<double> zero = sol.u;  // the input metric, for the first flip pass
-  if(fixed_u)
-    for(int v = 0; v < nv; ++v)
-      if(fixed[v]) sol.u[v] = (*fixed_u)[std::size_t(v)];
+  if(fixed_u) sol.u = *fixed_u;
   std::vector<double> angle_sum(nv);
   std::vector<Eigen::Triplet<double>> triplets;
   auto scaled = [&](int h, const std::vector<double>& u) {
