@@ -69,7 +69,7 @@
  * | `corner_angle` | 30 | boundary turning angle (degrees) above which an input vertex is kept as a corner |
  * | `max_adjustment_rounds` | 50 | bound on the flip-then-split rounds of `adjust_edge_lengths()` |
  * | `max_flips_per_edge` | 20 / 50 | bound on the flips of one flip pass, per edge: 20 in `adjust_edge_lengths()` (the pass stops, the splits go on), 50 in the conformal solves (`Convergence_failure`) |
- * | `max_conformal_iterations` | 100 | bound on the Newton steps of `conformal_embedding()`, `flat_torus_embedding()` |
+ * | `max_conformal_iterations` | 100 | bound on the Newton steps of `conformal_embedding()`, `spherical_embedding()`, `flat_torus_embedding()` |
  * | `conformal_tolerance` | 1e-9 | angle-sum error (radians) Newton's method must reach |
  * | `number_of_threads` | 0 (all cores) | workers of the CVT integration |
  * | `visitor` | `Default_visitor` | a model of `AnisoConformalVisitor`; pass `std::ref(v)` to keep its state |
