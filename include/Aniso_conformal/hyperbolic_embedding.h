@@ -1,0 +1,253 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_HYPERBOLIC_EMBEDDING_H
+#define ANISO_CONFORMAL_HYPERBOLIC_EMBEDDING_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/conformal/hyperbolic_conformal_newton.h>
+#include <Aniso_conformal/internal/conformal/hyperbolic_geometry.h>
+#include <Aniso_conformal/internal/conformal/tree_cotree.h>
+#include <Aniso_conformal/internal/visitor_helper.h>
+#include <Aniso_conformal/parameters.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <deque>
+#include <string>
+#include <vector>
+
+/// \file hyperbolic_embedding.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * a conformal embedding of a closed `Intrinsic_triangulation` of genus `g >= 2` into the hyperbolic
+ * plane (stage 3): the fundamental domain laid out on the hyperboloid (and in the Klein disk) and the
+ * deck transformations of the Fuchsian group that glue it into the surface.
+ *
+ * Points of the hyperbolic plane are points `x` of the upper sheet of the hyperboloid
+ * `-x0^2 + x1^2 + x2^2 = -1`; isometries are 3x3 Lorentz matrices; the Klein disk point of `x` is
+ * `(x1, x2) / x0`.
+ */
+struct Hyperbolic_embedding {
+  int genus = 0;  ///< genus of the surface
+  /// per face, its three corners (counterclockwise) on the hyperboloid, in the fundamental domain; the
+  /// domain is centred (the hyperboloid mass centre of its corners is the apex `(1, 0, 0)`)
+  std::vector<std::array<Eigen::Vector3d, 3>> corner_hyperboloid;
+  /// the same corners in the Klein disk
+  std::vector<std::array<Eigen::Vector2d, 3>> corner_klein;
+  /// per halfedge `h`: the deck transformation that takes the copy of the face of `twin(h)` in the
+  /// fundamental domain to the tile across `h` from the face of `h` (so `side_pairing[twin(h)]` is its
+  /// inverse); exactly the identity where both faces are adjacent in the fundamental domain
+  std::vector<Eigen::Matrix3d> side_pairing;
+  /// the `2 g` deck transformations of the generator edges (tree-cotree), which generate the group
+  std::vector<Eigen::Matrix3d> generators;
+  /// the `2 g` closed vertex loops of the generators (a homology basis)
+  std::vector<std::vector<int>> homology_basis;
+  std::vector<double> u;                 ///< log scale factor of each vertex
+  std::vector<double> conformal_factor;  ///< `cf(v)`: adjusted area around v over hyperbolic area around v (paper eq. 6)
+  double scale = 1;                      ///< `s`: `sinh(l / 2) = exp((u_i + u_j) / 2) s L` for edge length `L`
+  std::size_t iterations = 0;            ///< Newton iterations
+  double residual = 0;                   ///< max |2 pi - angle sum| over the vertices at the end
+  std::size_t degenerate_triangles = 0;  ///< triangles treated as flat at the end of the solve (0 normally)
+  std::size_t flips = 0;                 ///< intrinsic Delaunay flips made during the solve
+  /// hyperbolic area of the layout (Gauss-Bonnet: `4 pi (g - 1)`)
+  double area = 0;
+  /// the group relations checked numerically: around every vertex, the product of the side pairings
+  /// crossed is the identity; the largest entry of `product - I` (the layout error)
+  double relation_error = 0;
+  /// largest distance between a cut edge's end in one face and the image of its end in the twin face
+  double gluing_error = 0;
+  /// largest hyperbolic distance from the centre to a corner (how far the fundamental domain reaches)
+  double radius = 0;
+};
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * computes a hyperbolic conformal metric of the closed surface `itri` of genus `g >= 2` and lays out its
+ * fundamental domain (stage 3 for genus above 1, DESIGN.md 3):
+ * 1. per-vertex log scales `u` with hyperbolic lengths `sinh(l_ij / 2) = exp((u_i + u_j) / 2) s L_ij` and
+ *    angle sum `2 pi` at every vertex, by Newton's method on the strictly convex energy of Bobenko,
+ *    Pinkall and Springborn, with intrinsic Delaunay flips that keep the current hyperbolic metric;
+ * 2. a homology basis by tree-cotree; the surface cut along the edges not in the cotree (a disk) is
+ *    unfolded breadth-first on the hyperboloid;
+ * 3. the deck transformation across every cut edge, from the two copies of the edge; those of the `2 g`
+ *    generator edges generate the Fuchsian group;
+ * 4. checks: each is a Lorentz matrix, each maps its edge onto its twin, and around every vertex the
+ *    product of the transformations crossed is the identity (the relations of the group, Poincare's
+ *    polygon theorem); the layout's area is `4 pi (g - 1)`;
+ * 5. the domain is moved by an isometry so that the mass centre of its corners is the centre of the disk.
+ *
+ * \param itri a closed triangulation of genus at least 2 with valid edge lengths (after
+ *        `adjust_edge_lengths()`); its edges may be flipped
+ * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
+ *        (default `1e-9`), `max_flips_per_edge` (default 50), `visitor`
+ * \throws Invalid_input if `itri` has a boundary or genus below 2
+ * \throws Convergence_failure if Newton's method or the flips do not finish within their bounds, some
+ *         triangles are flat in the solution, or the layout fails its checks (with the error reached)
+ */
+template <typename NamedParameters = parameters::Default_named_parameters>
+Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const NamedParameters& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  const double pi = 3.14159265358979323846;
+  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces()), nh = int(itri.number_of_halfedges());
+  for(int h = 0; h < nh; ++h)
+    if(itri.is_boundary_edge(h))
+      throw Invalid_input("hyperbolic_embedding(): the triangulation has a boundary; the hyperbolic disk needs a closed surface");
+  const int chi = nv - nh / 2 + nf;
+  if(chi >= 0 || chi % 2 != 0)
+    throw Invalid_input("hyperbolic_embedding(): the surface has Euler characteristic " + std::to_string(chi) +
+                        "; the hyperbolic disk needs a closed surface of genus 2 or more");
+  Hyperbolic_embedding emb;
+  emb.genus = (2 - chi) / 2;
+
+  const std::size_t max_it = choose_parameter(get_parameter(np, internal_np::max_conformal_iterations), 100u);
+  const double tol = choose_parameter(get_parameter(np, internal_np::conformal_tolerance), 1e-9);
+  const std::size_t flips_per_halfedge = choose_parameter(get_parameter(np, internal_np::max_flips_per_edge), 50u);
+  typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
+  internal::Hyperbolic_conformal_solution sol =
+      internal::solve_hyperbolic_conformal_metric(itri, emb.genus, max_it, tol, vis, flips_per_halfedge);
+  emb.u = std::move(sol.u);
+  emb.scale = sol.scale;
+  emb.iterations = sol.iterations;
+  emb.residual = sol.residual;
+  emb.degenerate_triangles = sol.degenerate;
+  emb.flips = sol.flips;
+  if(emb.degenerate_triangles > 0)
+    throw Convergence_failure("hyperbolic embedding: " + std::to_string(emb.degenerate_triangles) +
+                                  " triangles are flat in the solution (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
+                              double(emb.degenerate_triangles));
+
+  // ---- cut along the edges not in the cotree and unfold the disk breadth-first on the hyperboloid
+  const internal::Tree_cotree tc = internal::tree_cotree(itri);
+  if(int(tc.generators.size()) != 2 * emb.genus)
+    throw Convergence_failure("hyperbolic embedding: the tree-cotree decomposition found " + std::to_string(tc.generators.size()) +
+                                  " generators instead of " + std::to_string(2 * emb.genus),
+                              0);
+  std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
+  for(int f = 0; f < nf; ++f) {
+    L[std::size_t(f)] = internal::hyperbolic_face_lengths(itri, f, emb.scale, emb.u);
+    bool deg;
+    const std::array<double, 3> a = internal::hyperbolic_corner_angles(L[std::size_t(f)], deg);
+    emb.area += pi - a[0] - a[1] - a[2];
+  }
+  if(!(std::abs(emb.area - 4 * pi * (emb.genus - 1)) <= 1e-6 * emb.area))
+    throw Convergence_failure("hyperbolic embedding: the hyperbolic area is " + std::to_string(emb.area) + " instead of 4 pi (g - 1) = " +
+                                  std::to_string(4 * pi * (emb.genus - 1)),
+                              std::abs(emb.area - 4 * pi * (emb.genus - 1)));
+  auto& X = emb.corner_hyperboloid;
+  X.assign(std::size_t(nf), {{Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitX()}});
+  std::vector<char> done(std::size_t(nf), 0);
+  X[0][1] = Eigen::Vector3d(std::cosh(L[0][0]), std::sinh(L[0][0]), 0);
+  X[0][2] = internal::hyperbolic_third_point(X[0][0], X[0][1], L[0][2], L[0][1]);
+  done[0] = 1;
+  std::deque<int> queue(1, 0);
+  while(!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    for(int k = 0; k < 3; ++k) {
+      const int h = 3 * f + k;
+      if(!tc.in_cotree[std::size_t(h)]) continue;
+      const int t = itri.twin(h), g = Intrinsic_triangulation::face(t), j = t % 3;
+      if(done[std::size_t(g)]) continue;
+      done[std::size_t(g)] = 1;
+      auto& c = X[std::size_t(g)];
+      c[std::size_t(j)] = X[std::size_t(f)][std::size_t((k + 1) % 3)];  // tail(t) = head(h)
+      c[std::size_t((j + 1) % 3)] = X[std::size_t(f)][std::size_t(k)];  // head(t) = tail(h)
+      c[std::size_t((j + 2) % 3)] = internal::hyperbolic_third_point(c[std::size_t(j)], c[std::size_t((j + 1) % 3)],
+                                                                     L[std::size_t(g)][std::size_t((j + 2) % 3)],
+                                                                     L[std::size_t(g)][std::size_t((j + 1) % 3)]);
+      queue.push_back(g);
+    }
+  }
+
+  // ---- centre: the boost taking the mass centre of the corners to the apex
+  {
+    Eigen::Vector3d m = Eigen::Vector3d::Zero();
+    for(const auto& c : X) m += c[0] + c[1] + c[2];
+    const Eigen::Vector3d o = internal::normalize_on_hyperboloid(m);
+    // the boost along the direction of o: T^-1 with T the frame of o (any frame taking the apex to o)
+    const Eigen::Vector3d toward = Eigen::Vector3d(o.x(), o.y() + 1e-3, o.z());  // any other direction works
+    const Eigen::Matrix3d Tinv = internal::lorentz_inverse(internal::hyperbolic_frame(o, internal::normalize_on_hyperboloid(
+                                                                                              toward)));
+    for(auto& c : X)
+      for(auto& x : c) x = internal::normalize_on_hyperboloid(Tinv * x);
+  }
+
+  // ---- side pairings: the isometry taking the twin face's copy of the edge onto this face's copy
+  emb.side_pairing.assign(std::size_t(nh), Eigen::Matrix3d::Identity());
+  double lorentz = 0;
+  for(int h = 0; h < nh; ++h) {
+    if(tc.in_cotree[std::size_t(h)]) continue;
+    const int t = itri.twin(h);
+    const Eigen::Vector3d& a = X[std::size_t(h / 3)][std::size_t(h % 3)];            // tail(h) in face(h)
+    const Eigen::Vector3d& b = X[std::size_t(h / 3)][std::size_t((h % 3 + 1) % 3)];  // head(h) in face(h)
+    const Eigen::Vector3d& a2 = X[std::size_t(t / 3)][std::size_t((t % 3 + 1) % 3)];  // tail(h) = head(t) in face(t)
+    const Eigen::Vector3d& b2 = X[std::size_t(t / 3)][std::size_t(t % 3)];            // head(h) = tail(t) in face(t)
+    const Eigen::Matrix3d P = internal::hyperbolic_frame(a, b) * internal::lorentz_inverse(internal::hyperbolic_frame(a2, b2));
+    lorentz = std::max(lorentz, internal::lorentz_defect(P));
+    emb.gluing_error = std::max({emb.gluing_error, internal::hyperbolic_distance(P * a2, a), internal::hyperbolic_distance(P * b2, b)});
+    // most cut edges (the tree's) glue the domain to itself: their pairing is the identity up to
+    // rounding, made exact so that only the true boundary of the fundamental domain carries a deck
+    // transformation (a non-trivial one moves every point by at least the shortest closed geodesic)
+    emb.side_pairing[std::size_t(h)] = (P - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 ? Eigen::Matrix3d::Identity() : P;
+  }
+  for(int h : tc.generators) {
+    emb.generators.push_back(emb.side_pairing[std::size_t(h)]);
+    emb.homology_basis.push_back(internal::generator_loop(itri, tc, h));
+  }
+  // the relations: going once around a vertex, crossing the cut edges met, must give the identity
+  for(int v = 0; v < nv; ++v) {
+    Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
+    bool crossed = false;
+    for(int h : itri.outgoing_halfedges(v)) {
+      // rotating counterclockwise from h to twin(prev(h))'s face crosses the edge of prev(h)
+      const int p = Intrinsic_triangulation::prev(h);
+      if(!tc.in_cotree[std::size_t(p)]) {
+        G = G * emb.side_pairing[std::size_t(p)];
+        crossed = true;
+      }
+    }
+    if(crossed) emb.relation_error = std::max(emb.relation_error, (G - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
+  }
+  for(const auto& c : X)
+    for(const auto& x : c) emb.radius = std::max(emb.radius, internal::hyperbolic_distance(x, Eigen::Vector3d::UnitX()));
+  const double layout_tol = 1e-6 * std::cosh(emb.radius) * std::cosh(emb.radius);
+  if(!(lorentz <= layout_tol && emb.gluing_error <= 1e-6 && emb.relation_error <= layout_tol))
+    throw Convergence_failure("hyperbolic embedding: the layout is inconsistent (Lorentz defect " + std::to_string(lorentz) +
+                                  ", gluing error " + std::to_string(emb.gluing_error) + ", relation error " +
+                                  std::to_string(emb.relation_error) + ")",
+                              std::max({lorentz, emb.gluing_error, emb.relation_error}));
+  emb.corner_klein.resize(std::size_t(nf));
+  for(int f = 0; f < nf; ++f)
+    for(int k = 0; k < 3; ++k) emb.corner_klein[std::size_t(f)][std::size_t(k)] = internal::to_klein(X[std::size_t(f)][std::size_t(k)]);
+
+  // ---- conformal factor (paper eq. 6): adjusted (Euclidean) area over hyperbolic area around each vertex
+  std::vector<double> adjusted_area(std::size_t(nv), 0.0), domain_area(std::size_t(nv), 0.0);
+  for(int f = 0; f < nf; ++f) {
+    const auto& c = itri.face_vertices(std::size_t(f));
+    const double a = itri.length(3 * f), b = itri.length(3 * f + 1), d = itri.length(3 * f + 2), p = (a + b + d) / 2;
+    const double a_adj = std::sqrt(std::max(0.0, p * (p - a) * (p - b) * (p - d)));
+    bool deg;
+    const std::array<double, 3> ang = internal::hyperbolic_corner_angles(L[std::size_t(f)], deg);
+    const double a_dom = pi - ang[0] - ang[1] - ang[2];
+    for(int k = 0; k < 3; ++k) {
+      adjusted_area[std::size_t(c[k])] += a_adj;
+      domain_area[std::size_t(c[k])] += a_dom;
+    }
+  }
+  emb.conformal_factor.resize(std::size_t(nv));
+  for(int v = 0; v < nv; ++v) emb.conformal_factor[std::size_t(v)] = adjusted_area[std::size_t(v)] / domain_area[std::size_t(v)];
+  return emb;
+}
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_HYPERBOLIC_EMBEDDING_H
