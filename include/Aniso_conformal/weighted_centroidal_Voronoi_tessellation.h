@@ -38,6 +38,14 @@ struct Has_project_to_tangent_plane<D, std::void_t<decltype(std::declval<const D
                                            std::declval<const typename D::Point&>(), std::declval<const typename D::Point&>()))>>
     : std::true_type {};
 
+// Optional member of a domain's Cell: `gradient`, the exact derivative of the cell's energy with respect
+// to the site's coordinates, for domains whose coordinates are not those in which the distance is
+// measured (the hyperboloid); without it the gradient is 2 m (x - c), exact in flat coordinates.
+template <typename C, typename = void>
+struct Has_cell_gradient : std::false_type {};
+template <typename C>
+struct Has_cell_gradient<C, std::void_t<decltype(std::declval<const C&>().gradient)>> : std::true_type {};
+
 } // namespace internal
 
 /*!
@@ -112,10 +120,15 @@ Cvt_report weighted_centroidal_Voronoi_tessellation(const DomainTraits& domain,
     g.resize(nvar);
     for(std::size_t i = 0; i < nfree; ++i) {
       const std::size_t s = number_of_fixed_sites + i;
-      if constexpr(tangent_hook)
-        g.segment(Eigen::Index(i) * D, D) = domain.project_to_tangent_plane(x[s], Point(2.0 * c[s].mass * (x[s] - c[s].centroid)));
+      Point gs;
+      if constexpr(internal::Has_cell_gradient<Cell>::value)
+        gs = c[s].gradient;
       else
-        g.segment(Eigen::Index(i) * D, D) = 2.0 * c[s].mass * (x[s] - c[s].centroid);
+        gs = 2.0 * c[s].mass * (x[s] - c[s].centroid);
+      if constexpr(tangent_hook)
+        g.segment(Eigen::Index(i) * D, D) = domain.project_to_tangent_plane(x[s], gs);
+      else
+        g.segment(Eigen::Index(i) * D, D) = gs;
     }
   };
   auto lloyd_step = [&](std::vector<Point>& x, const std::vector<Cell>& c) {
