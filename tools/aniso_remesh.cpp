@@ -136,6 +136,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 result.adjustment.flips, result.adjustment.splits, result.adjustment.repaired_triangles,
                 result.conformal_iterations, result.conformal_residual, result.conformal_flips, result.cvt.iterations,
                 o.cvt.c_str());
+    if(result.domain == "hyperbolic")
+      std::printf("hyperbolic   group relations hold to %.1e; %zu group elements near the fundamental domain\n",
+                  result.group_relation_error, result.group_elements);
     if(result.domain == "sphere")
       std::printf("sphere       angle distortion of the conformal map: mean %.3f deg, max %.3f deg\n",
                   result.angle_distortion[0], result.angle_distortion[1]);

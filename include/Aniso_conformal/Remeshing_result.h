@@ -24,7 +24,7 @@ namespace Aniso_conformal {
  */
 struct Remeshing_result {
   std::array<double, number_of_stages> seconds{};  ///< wall time of each stage, indexed by `Stage`
-  std::string domain;                              ///< the parametric domain used ("plane", "sphere", "flat-torus")
+  std::string domain;                              ///< the parametric domain used ("plane", "sphere", "flat-torus", "hyperbolic")
   std::size_t input_vertices = 0;                  ///< vertices of the input
   std::size_t input_faces = 0;                     ///< faces of the input
   std::size_t background_vertices = 0;             ///< vertices of the background after adjustment
@@ -49,6 +49,11 @@ struct Remeshing_result {
   /// sphere only: the angle distortion of the conformal map, mean and largest over the corners, in degrees
   /// (`Spherical_embedding::angle_distortion_mean`, `angle_distortion_max`)
   std::array<double, 2> angle_distortion{};
+  /// hyperbolic disk only: how well the deck transformations satisfy the group's relations (largest
+  /// entry of `product - I` around a vertex, `Hyperbolic_embedding::relation_error`)
+  double group_relation_error = 0;
+  /// hyperbolic disk only: the group elements whose tiles the CVT's band of images reached
+  std::size_t group_elements = 0;
   /// total wall time
   double total_seconds() const
   {

@@ -39,7 +39,7 @@ enum class Parametric_domain {
   PLANE,       ///< the plane, for topological disks (2D domains, images, open patches)
   FLAT_TORUS,  ///< the flat torus, for closed surfaces of genus 1
   SPHERE,      ///< the unit sphere, for closed surfaces of genus 0 (not available in this version)
-  HYPERBOLIC   ///< the hyperbolic disk, for closed surfaces of genus 2 or more (not available in this version)
+  HYPERBOLIC   ///< the hyperbolic disk, for closed surfaces of genus 2 or more
 };
 
 /*!

@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Hyperbolic_klein_domain_traits.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Planar_domain_traits.h>
@@ -17,6 +18,7 @@
 #include <Aniso_conformal/conformal_embedding.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/flat_torus_embedding.h>
+#include <Aniso_conformal/hyperbolic_embedding.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/parameters.h>
@@ -95,15 +97,20 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
     throw Invalid_input(std::string("remesh(): the ") + domain_name(requested) + " domain does not fit the input, which is " +
                         surface.topology_description() +
                         " (the plane takes topological disks, the sphere closed surfaces of genus 0, the flat torus closed "
-                        "surfaces of genus 1)");
-  if(fits == Parametric_domain::PLANE || fits == Parametric_domain::SPHERE || fits == Parametric_domain::FLAT_TORUS) return fits;
+                        "surfaces of genus 1, the hyperbolic disk closed surfaces of genus 2 or more)");
   if(fits == Parametric_domain::AUTOMATIC)
     throw Invalid_input("remesh(): the input is " + surface.topology_description() +
-                        "; this version remeshes topological disks (the plane) and closed surfaces of genus 0 (the sphere) "
-                        "and 1 (the flat torus)");
-  throw Invalid_input("remesh(): the input is " + surface.topology_description() +
-                      "; its domain, the hyperbolic disk, is not available in this version (topological disks and closed "
-                      "surfaces of genus 0 and 1 are)");
+                        "; this version remeshes topological disks (the plane) and closed surfaces of genus 0 (the sphere), "
+                        "1 (the flat torus) and 2 or more (the hyperbolic disk)");
+  return fits;
+}
+
+// the fewest vertices of a triangulation of the closed surface of genus g >= 1 (Ringel and Jungerman:
+// Heawood's bound ceil((7 + sqrt(1 + 48 g)) / 2), except 10 for genus 2)
+inline std::size_t minimum_vertices_of_genus(int g)
+{
+  if(g == 2) return 10;
+  return std::size_t(std::ceil((7 + std::sqrt(1.0 + 48.0 * g)) / 2 - 1e-9));
 }
 
 template <typename Embedding>
@@ -181,7 +188,9 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
  * - a closed surface of genus 0 goes to the unit sphere (`spherical_embedding()`,
  *   `Spherical_domain_traits`): the output is a closed genus-0 surface;
  * - a closed surface of genus 1 goes to the flat torus (`flat_torus_embedding()`,
- *   `Euclidean_periodic_domain_traits`): the output is a closed genus-1 surface.
+ *   `Euclidean_periodic_domain_traits`): the output is a closed genus-1 surface;
+ * - a closed surface of genus `g >= 2` goes to the hyperbolic disk (`hyperbolic_embedding()`,
+ *   `Hyperbolic_klein_domain_traits`): the output is a closed genus-`g` surface.
  *
  * The output is checked before it is returned: a consistently oriented, connected 2-manifold with the
  * input's genus and boundary count, no triangle inverted against the input's normals; every vertex lies
@@ -205,9 +214,10 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
  *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).
  * \returns the output mesh as arrays
  * \throws Invalid_input if the topology has no domain in this version (a surface with several boundary
- *         loops, a closed surface of genus above 1) or does not fit `parametric_domain`, the metric is
+ *         loops, or a boundary and a genus) or does not fit `parametric_domain`, the metric is
  *         unusable (non-finite, not symmetric, not positive definite on the tangent plane),
- *         `number_of_vertices` is missing, below the minimum (3 and the number of corners; 4 on the sphere, 7 on the flat torus),
+ *         `number_of_vertices` is missing, below the minimum (3 and the number of corners; 4 on the sphere, 7 on the flat torus,
+ *         the smallest triangulation of the genus above that: 10 for genus 2, 12 for genus 3),
  *         or above the number of background vertices
  * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
  *         output would have an inverted or degenerate triangle or a wrong topology (it is never returned)
@@ -233,6 +243,10 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   if(domain == Parametric_domain::FLAT_TORUS && n < 7)
     throw Invalid_input("remesh(): a closed surface of genus 1 needs at least 7 output vertices (the smallest torus "
                         "triangulation), " + std::to_string(n) + " were requested");
+  if(domain == Parametric_domain::HYPERBOLIC && n < internal::minimum_vertices_of_genus(surface.genus()))
+    throw Invalid_input("remesh(): a closed surface of genus " + std::to_string(surface.genus()) + " needs at least " +
+                        std::to_string(internal::minimum_vertices_of_genus(surface.genus())) +
+                        " output vertices (the smallest triangulation of that genus), " + std::to_string(n) + " were requested");
   if(domain == Parametric_domain::SPHERE && n < 4)
     throw Invalid_input("remesh(): a closed surface of genus 0 needs at least 4 output vertices (the tetrahedron), " +
                         std::to_string(n) + " were requested");
@@ -279,6 +293,16 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     Spherical_domain_traits traits(itri, emb, threads);
     std::vector<Spherical_domain_traits::Point> sites = traits.initial_sites(n, seed);
     out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+  } else if(domain == Parametric_domain::HYPERBOLIC) {
+    internal::Stage_timer t3(vis, Stage::EMBEDDING);
+    const Hyperbolic_embedding emb = hyperbolic_embedding(itri, np);
+    internal::record_embedding(emb, result);
+    result.group_relation_error = emb.relation_error;
+    result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
+    Hyperbolic_klein_domain_traits traits(itri, emb, threads);
+    std::vector<Hyperbolic_klein_domain_traits::Point> sites = traits.initial_sites(n, seed);
+    out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+    result.group_elements = traits.number_of_group_elements();
   } else {
     internal::Stage_timer t3(vis, Stage::EMBEDDING);
     const Flat_torus_embedding emb = flat_torus_embedding(itri, np);

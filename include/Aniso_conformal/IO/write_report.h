@@ -92,6 +92,8 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
   if(r.domain == "flat-torus")
     os << ", \"lattice\": [[" << json_number(r.lattice[0]) << ", " << json_number(r.lattice[1]) << "], ["
        << json_number(r.lattice[2]) << ", " << json_number(r.lattice[3]) << "]]";
+  if(r.domain == "hyperbolic")
+    os << ", \"group_relation_error\": " << json_number(r.group_relation_error) << ", \"group_elements\": " << r.group_elements;
   if(r.domain == "sphere")
     os << ", \"angle_distortion_mean_degrees\": " << json_number(r.angle_distortion[0])
        << ", \"angle_distortion_max_degrees\": " << json_number(r.angle_distortion[1]);

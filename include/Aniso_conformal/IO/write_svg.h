@@ -139,6 +139,83 @@ inline void write_histogram_svg(const std::string& path, const std::vector<doubl
 
 /*!
  * \ingroup PkgAnisoConformalIO
+ * draws a Voronoi tessellation of a hyperbolic surface in the Klein disk (the paper's Fig.\ 13 (a)) as
+ * SVG: the unit circle, the cells (straight polygons: hyperbolic Voronoi cells are power cells in the
+ * Klein model) coloured by `values`, the sites as dots, and the cut of the fundamental domain (the
+ * edges glued by a non-trivial deck transformation) in bold.
+ *
+ * \param path the SVG file to write
+ * \param sites the sites' Klein points (in the fundamental domain)
+ * \param cells the cell of each site, a polygon of Klein points (`Hyperbolic_klein_domain_traits::voronoi_cells()`)
+ * \param cut segments of the fundamental domain's boundary, Klein points (`Hyperbolic_klein_domain_traits::fundamental_domain_boundary()`)
+ * \param values a value per site colouring its cell on the red-yellow-green ramp; empty for uncoloured cells
+ * \param title a line of text above the picture
+ * \throws Invalid_input if `cells` and `sites` (or a non-empty `values`) differ in size, or the file cannot be written
+ */
+inline void write_hyperbolic_cvt_svg(const std::string& path, const std::vector<Eigen::Vector2d>& sites,
+                                     const std::vector<std::vector<Eigen::Vector2d>>& cells,
+                                     const std::vector<std::array<Eigen::Vector2d, 2>>& cut, const std::vector<double>& values,
+                                     const std::string& title)
+{
+  if(cells.size() != sites.size())
+    throw Invalid_input("write_hyperbolic_cvt_svg(): " + std::to_string(cells.size()) + " cells for " + std::to_string(sites.size()) + " sites");
+  if(!values.empty() && values.size() != sites.size())
+    throw Invalid_input("write_hyperbolic_cvt_svg(): " + std::to_string(values.size()) + " values for " + std::to_string(sites.size()) + " sites");
+  const double R = 440, left = 20, top = 40, width = 2 * R + 2 * left, height = 2 * R + top + 50;
+  char buf[256];
+  auto xy = [&](const Eigen::Vector2d& p) {
+    std::snprintf(buf, sizeof(buf), "%.2f,%.2f", left + R + R * p.x(), top + R - R * p.y());
+    return std::string(buf);
+  };
+  double vmin = 1e300, vmax = -1e300;
+  for(double v : values)
+    if(std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
+  if(vmin > vmax) vmin = vmax = 0;
+  const int classes = values.empty() ? 1 : 20;
+  std::vector<std::string> paths(static_cast<std::size_t>(classes));
+  for(std::size_t i = 0; i < cells.size(); ++i) {
+    const std::vector<Eigen::Vector2d>& cell = cells[i];
+    if(cell.size() < 3) continue;
+    bool finite = true;
+    for(const auto& p : cell) finite = finite && p.allFinite() && p.squaredNorm() < 1;
+    if(!finite) continue;
+    int c = 0;
+    if(!values.empty() && vmax > vmin && std::isfinite(values[i]))
+      c = std::min(classes - 1, std::max(0, int((values[i] - vmin) / (vmax - vmin) * classes)));
+    std::string& d = paths[std::size_t(c)];
+    for(std::size_t k = 0; k < cell.size(); ++k) d += (k == 0 ? "M" : k == 1 ? "L" : " ") + xy(cell[k]);
+    d += "Z";
+  }
+  std::ofstream out(path);
+  if(!out) throw Invalid_input("cannot write " + path);
+  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
+                width, height, width, height);
+  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
+  std::snprintf(buf, sizeof(buf), "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"#f6f6f6\" stroke=\"black\" stroke-width=\"1\"/>\n", left + R,
+                top + R, R);
+  out << buf << "<g stroke=\"#333\" stroke-width=\"0.25\" stroke-linejoin=\"round\">\n";
+  for(int c = 0; c < classes; ++c) {
+    if(paths[std::size_t(c)].empty()) continue;
+    out << "<path fill=\"" << (values.empty() ? std::string("#eef2f8") : internal::ramp((c + 0.5) / classes)) << "\" d=\""
+        << paths[std::size_t(c)] << "\"/>\n";
+  }
+  out << "</g>\n<path fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-width=\"1.2\" d=\"";
+  for(const Eigen::Vector2d& p : sites)
+    if(p.allFinite()) out << "M" << xy(p) << "h0";
+  out << "\"/>\n<path fill=\"none\" stroke=\"#1040c0\" stroke-width=\"1.5\" d=\"";
+  for(const auto& s : cut) out << "M" << xy(s[0]) << "L" << xy(s[1]);
+  out << "\"/>\n";
+  std::snprintf(buf, sizeof(buf), "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%zu sites; blue: the cut of the fundamental domain</text>\n",
+                left, 2 * R + top + 29, sites.size());
+  out << buf;
+  if(!values.empty()) internal::write_legend(out, width - 360, 2 * R + top + 18, vmin, vmax);
+  out << "</svg>\n";
+  if(!out) throw Invalid_input("cannot write " + path);
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
  * draws a Voronoi tessellation of the flat torus `R^2 / L` (the paper's Fig.\ 11 (a)) as SVG: the
  * fundamental cell `{s a + t b : 0 <= s, t < 1}` of the lattice `L` spanned by `lattice = (a, b)`,
  * outlined, tiled by the Voronoi cells drawn with thin lines, and the sites as dots sized after their
