@@ -51,8 +51,9 @@ namespace Aniso_conformal {
  * Integration: each background triangle (a straight triangle in the Klein disk, where geodesics are
  * chords) is clipped against the power cells it meets; mass, hyperboloid first moment, energy
  * `int rho d(y, x)^2` and its gradient are integrated with the hyperbolic area element
- * `(1 - |k|^2)^(-3/2)` by a 3-point rule on a fan of the clipped polygon (the element is not
- * polynomial). The centroid is the hyperboloid mass centre: the first moment normalised onto the
+ * `(1 - |k|^2)^(-3/2)` by a 6-point rule of degree 4 on a fan of the clipped polygon, moved first by
+ * the isometry that takes the triangle to the centre of the disk, where the element is flat (it is not
+ * polynomial, and steep far out). The centroid is the hyperboloid mass centre: the first moment normalised onto the
  * hyperboloid. Images' integrals are pulled back to their sites through the group element.
  *
  * For the optimiser the domain is the hyperboloid in `R^3` (optional hooks `project_to_domain`,
@@ -91,6 +92,7 @@ public:
     const std::vector<std::size_t> order = internal::morton_order(centroids, Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1));
     m_tri.reserve(nf);
     m_rho.resize(nf);
+    m_frame.reserve(nf);
     m_slot.assign(nf, 0);
     for(std::size_t i = 0; i < nf; ++i) {
       const std::size_t f = order[i];
@@ -104,6 +106,9 @@ public:
       }
       m_tri.push_back(internal::make_background_triangle(emb.corner_klein[f], sample, int(f)));
       m_rho[i] = internal::make_background_triangle(emb.corner_klein[f], rho, int(f));
+      const auto& X = emb.corner_hyperboloid[f];
+      const Point g = internal::normalize_on_hyperboloid(X[0] + X[1] + X[2]);
+      m_frame.push_back(internal::hyperbolic_frame(g, internal::normalize_on_hyperboloid(g + X[0] - X[1])));
       m_slot[f] = i;
       for(int k = 0; k < 3; ++k)
         m_face_size = std::max(m_face_size, internal::hyperbolic_distance(emb.corner_hyperboloid[f][k], emb.corner_hyperboloid[f][(k + 1) % 3]));
@@ -116,7 +121,7 @@ public:
     m_total_mass = 0;
     for(std::size_t i = 0; i < nf; ++i) {
       Cell c;
-      integrate_piece(m_rho[i].p, 3, m_rho[i], Point::UnitX(), c);
+      integrate_piece(m_rho[i].p, 3, i, Point::UnitX(), c);
       m_total_mass += c.mass;
     }
   }
@@ -529,21 +534,34 @@ private:
                               double(ns));
   }
 
-  // integrals over the convex Klein polygon `poly` (fan, 3-point rule) about the site x (hyperboloid)
+  // Integrals over the convex Klein polygon `poly` (a part of background triangle `slot`) about the site
+  // x (hyperboloid). The area element (1 - |k|^2)^(-3/2) is steep far out in the disk, so the polygon is
+  // first moved by the isometry that takes the triangle's centroid to the centre (a projective map of
+  // the Klein disk: polygons stay polygons), where the element is flat to second order; then a 6-point
+  // rule of degree 4 on a fan, the density evaluated at the node's place in the domain.
   template <typename Points>
-  static void integrate_piece(const Points& poly, int n, const internal::Background_triangle& T, const Point& x, Cell& acc)
+  void integrate_piece(const Points& poly, int n, std::size_t slot, const Point& x, Cell& acc) const
   {
-    static const double bary[3][3] = {{2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, {1.0 / 6, 1.0 / 6, 2.0 / 3}};
+    static const double w6[2] = {0.223381589678011, 0.109951743655322};
+    static const double b6[2][3] = {{0.108103018168070, 0.445948490915965, 0.445948490915965},
+                                    {0.816847572980459, 0.091576213509771, 0.091576213509771}};
+    const internal::Background_triangle& T = m_rho[slot];
+    const Eigen::Matrix3d& F = m_frame[slot];
+    const Eigen::Matrix3d Finv = internal::lorentz_inverse(F);
+    Eigen::Vector2d local[internal::Small_polygon::capacity];
+    for(int i = 0; i < n; ++i) local[i] = internal::to_klein(Finv * internal::from_klein(poly[i]));
     for(int i = 2; i < n; ++i) {
-      const Eigen::Vector2d &a = poly[0], &b = poly[i - 1], &c = poly[i];
+      const Eigen::Vector2d &a = local[0], &b = local[i - 1], &c = local[i];
       const double A = 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
       if(!(A > 0)) continue;
-      for(int q = 0; q < 3; ++q) {
-        const Eigen::Vector2d k = bary[q][0] * a + bary[q][1] * b + bary[q][2] * c;
-        const double rho = T.r0 + T.rg.dot(k);
+      for(int q = 0; q < 6; ++q) {
+        const double* l = b6[q / 3];
+        const int r = q % 3;
+        const Eigen::Vector2d k = l[r] * a + l[(r + 1) % 3] * b + l[(r + 2) % 3] * c;
         const double s = 1.0 / std::sqrt(std::max(1e-300, 1 - k.squaredNorm()));
-        const Point y(s, s * k.x(), s * k.y());
-        const double w = (A / 3) * rho * s * s * s;  // area element (1 - |k|^2)^(-3/2)
+        const Point y = F * Point(s, s * k.x(), s * k.y());  // the node in the domain
+        const double rho = T.r0 + T.rg.dot(Eigen::Vector2d(y.y() / y.x(), y.z() / y.x()));
+        const double w = A * w6[q / 3] * rho * s * s * s;  // area element (1 - |k|^2)^(-3/2)
         const double d = internal::hyperbolic_distance(y, x);
         acc.mass += w;
         acc.centroid += w * y;
@@ -600,7 +618,7 @@ private:
             }
           }
           if(poly->n < 3) continue;
-          integrate_piece(poly->p, poly->n, T, ps, A[std::size_t(s)]);
+          integrate_piece(poly->p, poly->n, f, ps, A[std::size_t(s)]);
           if(!clipped) continue;  // the whole triangle is in the cell
           for(int j = start[std::size_t(s)]; j < start[std::size_t(s) + 1]; ++j) {
             const int n = nbr[std::size_t(j)];
@@ -634,6 +652,7 @@ private:
   std::vector<internal::Background_triangle> m_tri;  // Klein triangles, density weighted by the area element (sampling, location)
   std::vector<internal::Background_triangle> m_rho;  // the same triangles with the density cf^2 (integration)
   std::vector<std::size_t> m_slot;                   // face of the Intrinsic_triangulation -> index in m_tri
+  std::vector<Eigen::Matrix3d> m_frame;              // per triangle, an isometry taking the centre to its centroid
   internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
   std::vector<Eigen::Matrix3d> m_pairing;
