@@ -238,6 +238,34 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_one_surface_on_the_flat_torus)
   BOOST_TEST(!exists(mesh));
 }
 
+BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_two_surface_in_the_hyperbolic_disk)
+{
+  BOOST_TEST((parse({"--input", "e.off", "--domain", "hyperbolic", "--vertices", "10"}).parametric_domain ==
+              Aniso_conformal::Parametric_domain::HYPERBOLIC));
+  const std::string in = std::string(ANISO_CONFORMAL_DATA_DIR) + "/meshes/eight_1k.off", mesh = out_dir + "/cli_eight_out.off",
+                    report = out_dir + "/cli_eight.json";
+  std::remove(mesh.c_str());
+  const Run r = run("--input " + in + " --metric curvature --stretch-max 5 --vertices 300 --output " + mesh + " --report " + report);
+  BOOST_TEST(r.status == 0);
+  BOOST_TEST(r.out.find("domain hyperbolic") != std::string::npos);
+  BOOST_TEST(r.out.find("group relations hold") != std::string::npos);
+  const Aniso_conformal::Input_surface out = Aniso_conformal::IO::read_triangle_mesh(mesh);
+  BOOST_TEST(out.number_of_vertices() == 300u);
+  BOOST_TEST(out.genus() == 2);
+  BOOST_TEST(out.boundary_loops().empty());
+  const std::string json = slurp(report);
+  BOOST_TEST(json.find("\"domain\": \"hyperbolic\"") != std::string::npos);
+  BOOST_TEST(json.find("\"group_relation_error\"") != std::string::npos);
+
+  // the sphere does not fit a genus-2 surface: exit 2, nothing written
+  std::remove(mesh.c_str());
+  const Run bad = run("--input " + in + " --domain sphere --vertices 300 --output " + mesh);
+  BOOST_TEST(bad.status == 2);
+  BOOST_TEST(bad.err.find("sphere domain does not fit") != std::string::npos);
+  BOOST_TEST(bad.err.find("genus 2") != std::string::npos);
+  BOOST_TEST(!exists(mesh));
+}
+
 BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_zero_surface_on_the_sphere)
 {
   BOOST_TEST((parse({"--input", "e.off", "--domain", "sphere", "--vertices", "10"}).parametric_domain ==

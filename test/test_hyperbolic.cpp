@@ -1,0 +1,347 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Closed surfaces of genus above 1 through the hyperbolic disk: the hyperboloid primitives, the
+// hyperbolic conformal embedding (angle sums, Gauss-Bonnet, deck transformations and their relations,
+// the Newton bound), the Klein-disk power-diagram CVT (mass, gradient against finite differences,
+// Lloyd and L-BFGS, the dual's counts), the whole pipeline on the paper's Fig. 13 Eight and on a
+// genus-3 surface, and the bad inputs.
+
+#define BOOST_TEST_MODULE Aniso_conformal_hyperbolic
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Hyperbolic_klein_domain_traits.h>
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/hyperbolic_embedding.h>
+#include <Aniso_conformal/make_dupin_cyclide.h>
+#include <Aniso_conformal/make_subdivided_surface.h>
+#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
+
+#include "mesh_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace AC = Aniso_conformal;
+
+namespace {
+
+const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
+const double pi = 3.14159265358979323846;
+
+AC::Input_surface eight_1k() { return AC::IO::read_triangle_mesh(data_dir + "/meshes/eight_1k.off"); }
+
+struct Background {
+  AC::Intrinsic_triangulation itri;
+  explicit Background(const AC::Input_surface& s) : itri(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()))
+  {
+    AC::adjust_edge_lengths(itri, s);
+  }
+};
+
+template <typename E, typename F>
+std::string message_of(F f)
+{
+  try {
+    f();
+  } catch(const E& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// the output is a closed genus-g surface with n vertices on the input
+void check_output(const AC::Input_surface& s, const AC::Remeshed_surface& out, std::size_t n, int genus)
+{
+  BOOST_TEST(out.points.size() == n);
+  BOOST_TEST(out.faces.size() == 2 * n + 4 * std::size_t(genus - 1));
+  const test::Mesh_counts m = test::count_mesh(out.points, out.faces);
+  BOOST_TEST(m.boundary_edges == 0u);
+  BOOST_TEST(m.euler == 2 - 2 * genus);
+  std::vector<AC::Input_surface::Face> faces(out.faces.begin(), out.faces.end());
+  BOOST_CHECK_NO_THROW(AC::Input_surface(out.points, faces));
+  double worst = 0;
+  for(const auto& sp : out.surface_points) {
+    const Eigen::Vector3d x = sp.barycentric[0] * s.points()[sp.vertices[0]] + sp.barycentric[1] * s.points()[sp.vertices[1]] +
+                              sp.barycentric[2] * s.points()[sp.vertices[2]];
+    worst = std::max(worst, (x - sp.position).norm());
+  }
+  BOOST_TEST(worst < 1e-9);
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(hyperboloid_primitives)
+{
+  namespace I = AC::internal;
+  const Eigen::Vector3d p = I::from_klein(Eigen::Vector2d(0.3, -0.5)), q = I::from_klein(Eigen::Vector2d(-0.2, 0.6));
+  BOOST_TEST(std::abs(I::minkowski_dot(p, p) + 1) < 1e-12);
+  BOOST_TEST((I::to_klein(p) - Eigen::Vector2d(0.3, -0.5)).norm() < 1e-12);
+  // the distance of the precise formula agrees with acosh(-<p, q>) where that is accurate
+  BOOST_TEST(std::abs(I::hyperbolic_distance(p, q) - std::acosh(-I::minkowski_dot(p, q))) < 1e-12);
+  // and stays accurate for close points, where acosh(-<p, q>) would give about 1e-8
+  const Eigen::Vector3d r = I::from_klein(Eigen::Vector2d(0.3 + 1e-12, -0.5));
+  BOOST_TEST(I::hyperbolic_distance(p, r) > 1e-13);
+  BOOST_TEST(I::hyperbolic_distance(p, r) < 1e-10);
+  // the frame is a positively oriented Lorentz matrix taking the apex to p
+  const Eigen::Matrix3d T = I::hyperbolic_frame(p, q);
+  BOOST_TEST(I::lorentz_defect(T) < 1e-12);
+  BOOST_TEST(T.determinant() > 0);
+  BOOST_TEST((T * Eigen::Vector3d::UnitX() - p).norm() < 1e-12);
+  BOOST_TEST((I::lorentz_inverse(T) * T - Eigen::Matrix3d::Identity()).norm() < 1e-12);
+  // the third point has the asked distances and lies to the left (counterclockwise in the Klein disk)
+  const Eigen::Vector3d s = I::hyperbolic_third_point(p, q, 1.1, 0.9);
+  BOOST_TEST(std::abs(I::hyperbolic_distance(p, s) - 1.1) < 1e-12);
+  BOOST_TEST(std::abs(I::hyperbolic_distance(q, s) - 0.9) < 1e-12);
+  const Eigen::Vector2d a = I::to_klein(p), b = I::to_klein(q), c = I::to_klein(s);
+  BOOST_TEST((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() > 0);
+  // corner angles: the law of cosines, a sum below pi by the area, the flat rule past the triangle inequality
+  bool deg;
+  const std::array<double, 3> ang = I::hyperbolic_corner_angles({{0.7, 0.9, 1.2}}, deg);
+  BOOST_TEST(!deg);
+  const double alpha = std::acos((std::cosh(0.7) * std::cosh(1.2) - std::cosh(0.9)) / (std::sinh(0.7) * std::sinh(1.2)));
+  BOOST_TEST(std::abs(ang[0] - alpha) < 1e-12);  // the angle at corner 0 faces side 1
+  BOOST_TEST(ang[0] + ang[1] + ang[2] < pi);
+  I::hyperbolic_corner_angles({{0.2, 0.3, 0.6}}, deg);
+  BOOST_TEST(deg);
+}
+
+BOOST_AUTO_TEST_CASE(hyperbolic_embedding_of_the_eight)
+{
+  const AC::Input_surface s = eight_1k();
+  BOOST_REQUIRE(s.genus() == 2);
+  Background b(s);
+  const AC::Hyperbolic_embedding emb = AC::hyperbolic_embedding(b.itri);
+  const AC::Intrinsic_triangulation& t = b.itri;
+  BOOST_TEST(emb.genus == 2);
+  BOOST_TEST(emb.residual <= 1e-9);
+  BOOST_TEST(emb.iterations <= 10u);
+  BOOST_TEST(emb.degenerate_triangles == 0u);
+  // Gauss-Bonnet: the hyperbolic area of a genus-2 surface is 4 pi
+  BOOST_TEST(std::abs(emb.area - 4 * pi) < 1e-6);
+  // every vertex has angle sum 2 pi with the scaled lengths
+  std::vector<double> sum(t.number_of_vertices(), 0.0);
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    bool deg;
+    const auto a = AC::internal::hyperbolic_corner_angles(AC::internal::hyperbolic_face_lengths(t, int(f), emb.scale, emb.u), deg);
+    for(int k = 0; k < 3; ++k) sum[std::size_t(t.face_vertices(f)[k])] += a[std::size_t(k)];
+  }
+  double worst = 0;
+  for(double x : sum) worst = std::max(worst, std::abs(x - 2 * pi));
+  BOOST_TEST(worst < 1e-8);
+  // the layout: each face has its hyperbolic lengths, counterclockwise in the Klein disk, inside it
+  double length_error = 0;
+  std::size_t clockwise = 0;
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const auto L = AC::internal::hyperbolic_face_lengths(t, int(f), emb.scale, emb.u);
+    const auto& X = emb.corner_hyperboloid[f];
+    const auto& k = emb.corner_klein[f];
+    for(int j = 0; j < 3; ++j) {
+      length_error = std::max(length_error, std::abs(AC::internal::hyperbolic_distance(X[std::size_t(j)], X[std::size_t((j + 1) % 3)]) - L[std::size_t(j)]));
+      BOOST_TEST(k[std::size_t(j)].norm() < 1.0);
+    }
+    if((k[1] - k[0]).x() * (k[2] - k[0]).y() - (k[1] - k[0]).y() * (k[2] - k[0]).x() <= 0) ++clockwise;
+  }
+  BOOST_TEST(length_error < 1e-6);
+  BOOST_TEST(clockwise == 0u);
+  // the group: 2g generators, Lorentz, each pairing's twin is its inverse, the relations hold
+  BOOST_TEST(emb.generators.size() == 4u);
+  BOOST_TEST(emb.homology_basis.size() == 4u);
+  std::size_t non_trivial = 0;
+  for(std::size_t h = 0; h < t.number_of_halfedges(); ++h) {
+    const Eigen::Matrix3d& P = emb.side_pairing[h];
+    BOOST_TEST(AC::internal::lorentz_defect(P) < 1e-6);
+    BOOST_TEST((P * emb.side_pairing[std::size_t(t.twin(int(h)))] - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-5);
+    if(P != Eigen::Matrix3d::Identity()) ++non_trivial;
+  }
+  BOOST_TEST(non_trivial > 0u);
+  for(const Eigen::Matrix3d& g : emb.generators) {
+    // a deck transformation moves every point: by at least the shortest closed geodesic
+    BOOST_TEST(AC::internal::hyperbolic_distance(g.col(0), Eigen::Vector3d::UnitX()) > 0.05);
+    BOOST_TEST(g(0, 0) > 0);  // keeps the upper sheet
+  }
+  BOOST_TEST(emb.relation_error < 1e-5);
+  BOOST_TEST(emb.gluing_error < 1e-6);
+  BOOST_TEST(emb.radius < 6.0);
+  for(double cf : emb.conformal_factor) BOOST_TEST(cf > 0);
+  BOOST_TEST_MESSAGE("Eight 1k: " << emb.iterations << " Newton iterations, " << emb.flips << " flips, relation error "
+                                  << emb.relation_error << ", radius " << emb.radius);
+}
+
+BOOST_AUTO_TEST_CASE(hyperbolic_embedding_bad_inputs)
+{
+  // genus 1 and genus 0 have no hyperbolic metric
+  const AC::Input_surface torus = AC::make_dupin_cyclide(24, 12);
+  Background bt(torus);
+  BOOST_TEST(contains(message_of<AC::Invalid_input>([&] { AC::hyperbolic_embedding(bt.itri); }), "genus 2 or more"));
+  // a genus-2 surface with a hole is not closed
+  AC::Input_surface s = eight_1k();
+  std::vector<AC::Input_surface::Face> faces(s.faces().begin() + 1, s.faces().end());
+  const AC::Input_surface holed(s.points(), faces);
+  Background bh(holed);
+  BOOST_TEST(contains(message_of<AC::Invalid_input>([&] { AC::hyperbolic_embedding(bh.itri); }), "has a boundary"));
+  // the Newton bound: one iteration does not reach the tolerance, and the message gives the residual
+  Background b(s);
+  const std::string m = message_of<AC::Convergence_failure>(
+      [&] { AC::hyperbolic_embedding(b.itri, AC::parameters::max_conformal_iterations(1u)); });
+  BOOST_TEST(contains(m, "angle-sum error"));
+  BOOST_TEST(contains(m, "after 1 iterations"));
+}
+
+BOOST_AUTO_TEST_CASE(klein_power_diagram_integrals_and_cvt)
+{
+  const AC::Input_surface s = eight_1k();
+  Background b(s);
+  const AC::Hyperbolic_embedding emb = AC::hyperbolic_embedding(b.itri);
+  const AC::Hyperbolic_klein_domain_traits d(b.itri, emb, 2);
+  BOOST_TEST(d.genus() == 2);
+  std::vector<AC::Hyperbolic_klein_domain_traits::Point> x = d.initial_sites(200, 7);
+  BOOST_TEST(x.size() == 200u);
+  for(const auto& p : x) BOOST_TEST(d.contains(p));
+  // the cells partition the surface: their masses add up to the total
+  std::vector<AC::Hyperbolic_klein_domain_traits::Cell> cells;
+  d.integrate(x, cells);
+  double mass = 0;
+  for(const auto& c : cells) {
+    mass += c.mass;
+    BOOST_TEST(c.mass > 0);
+    BOOST_TEST(d.contains(c.centroid));
+  }
+  BOOST_TEST(std::abs(mass - d.total_mass()) < 1e-7 * d.total_mass());  // one quadrature rule, clipped or whole
+  // a site moved to an image under a deck transformation has the same cell (pulled back)
+  std::vector<AC::Hyperbolic_klein_domain_traits::Point> y = x;
+  y[5] = emb.generators[0] * x[5];
+  std::vector<AC::Hyperbolic_klein_domain_traits::Cell> cy;
+  d.integrate(y, cy);
+  BOOST_TEST(std::abs(cy[5].mass - cells[5].mass) < 1e-9 * cells[5].mass);
+  BOOST_TEST(AC::internal::hyperbolic_distance(cy[5].centroid, emb.generators[0] * cells[5].centroid) < 1e-9);
+  // the gradient against central differences along a tangent direction at a few sites
+  double E0 = 0;
+  for(const auto& c : cells) E0 += c.energy;
+  for(std::size_t i : {0u, 57u, 133u}) {
+    const Eigen::Vector3d dir = d.project_to_tangent_plane(x[i], Eigen::Vector3d(0.3, 1.0, -0.7)).normalized();
+    const double h = 1e-5;
+    auto energy_at = [&](double t) {
+      std::vector<AC::Hyperbolic_klein_domain_traits::Point> z = x;
+      z[i] = d.project_to_domain(x[i] + t * dir);
+      std::vector<AC::Hyperbolic_klein_domain_traits::Cell> c;
+      d.integrate(z, c);
+      double e = 0;
+      for(const auto& cc : c) e += cc.energy;
+      return e;
+    };
+    const double fd = (energy_at(h) - energy_at(-h)) / (2 * h);
+    const double an = d.project_to_tangent_plane(x[i], cells[i].gradient).dot(dir);
+    BOOST_TEST(std::abs(fd - an) < 1e-3 * std::max(1e-6, std::abs(an)) + 1e-9, "site " << i << ": " << fd << " vs " << an);
+  }
+  // Lloyd and L-BFGS decrease the energy; the dual is a genus-2 triangulation with 2n + 4 triangles
+  for(AC::Cvt_method method : {AC::Cvt_method::LLOYD, AC::Cvt_method::LBFGS}) {
+    std::vector<AC::Hyperbolic_klein_domain_traits::Point> z = x;
+    const AC::Cvt_report rep =
+        AC::weighted_centroidal_Voronoi_tessellation(d, z, 0, AC::parameters::number_of_iterations(30u).cvt_method(method));
+    BOOST_TEST(rep.energy.back() < 0.8 * rep.energy.front());
+    for(std::size_t k = 1; k < rep.energy.size(); ++k) BOOST_TEST(rep.energy[k] <= rep.energy[k - 1] * (1 + 1e-12));
+    const auto tris = d.dual_triangles(z);
+    BOOST_TEST(tris.size() == 2 * z.size() + 4);
+    int f;
+    Eigen::Vector3d bary;
+    for(std::size_t i = 0; i < z.size(); ++i) {
+      BOOST_TEST(d.background_location(i, z[i], f, bary));
+      BOOST_TEST(bary.minCoeff() > -1e-6);
+    }
+    const AC::Remeshed_surface out = AC::extract_dual_mesh(s, b.itri, d, z);
+    check_output(s, out, z.size(), 2);
+  }
+  // pictures: one cell per site, the cut of the fundamental domain, the sites in the Klein disk
+  BOOST_TEST(d.voronoi_cells(x).size() == x.size());
+  BOOST_TEST(!d.fundamental_domain_boundary().empty());
+  for(const auto& k : d.klein_sites(x)) BOOST_TEST(k.norm() < 1.0);
+  BOOST_TEST(d.number_of_group_elements() > 4u);
+  // errors: a site off the hyperboloid, no site
+  std::vector<AC::Hyperbolic_klein_domain_traits::Point> bad = x;
+  bad[3] = Eigen::Vector3d(0.5, 0, 0);
+  BOOST_TEST(contains(message_of<AC::Convergence_failure>([&] { d.integrate(bad, cells); }), "site 3 is not a point of the hyperbolic plane"));
+  BOOST_TEST(contains(message_of<AC::Invalid_input>([&] { d.initial_sites(0, 0); }), "at least one site"));
+}
+
+BOOST_AUTO_TEST_CASE(fig13_eight_meets_the_quality_bar)
+{
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/eight_10k.off");
+  const auto before = s.points();
+  AC::Curvature_metric_options o;
+  o.stretch_max = 5;
+  const AC::Curvature_metric metric(s, o);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(std::size_t(1000)));
+  check_output(s, out, 1000, 2);
+  BOOST_TEST(r.domain == "hyperbolic");
+  const AC::Quality_report& q = r.quality;
+  BOOST_TEST_MESSAGE("Fig. 13 Eight: G_min " << q.G_min << " G_avg " << q.G_avg << " theta_min " << q.theta_min << " %<30 "
+                                             << q.percent_below_30 << " Hausdorff " << r.hausdorff_distance_relative << " total "
+                                             << r.total_seconds() << " s, " << r.group_elements << " group elements");
+  BOOST_TEST(q.G_avg >= 0.88);
+  BOOST_TEST(q.theta_min >= 15.0);
+  BOOST_TEST(q.percent_below_30 <= 1.0);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.hausdorff_distance_relative < 0.01);
+  BOOST_TEST(r.group_relation_error < 1e-4);
+  BOOST_TEST((s.points() == before));
+}
+
+BOOST_AUTO_TEST_CASE(genus_three_surface)
+{
+  const AC::Input_surface s = AC::make_subdivided_surface(data_dir + "/meshes/3torus.off", 3);
+  BOOST_REQUIRE(s.genus() == 3);
+  BOOST_REQUIRE(s.boundary_loops().empty());
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(600)));
+  check_output(s, out, 600, 3);
+  BOOST_TEST(r.quality.theta_min >= 15.0);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+  BOOST_TEST(contains(message_of<AC::Invalid_input>([&] { AC::make_subdivided_surface(data_dir + "/meshes/none.off", 1); }),
+                      "cannot read"));
+}
+
+BOOST_AUTO_TEST_CASE(genus_two_bad_inputs_name_the_problem)
+{
+  const AC::Input_surface s = eight_1k();
+  const auto before = s.points();
+  AC::Remeshing_result r;
+  // fewer vertices than the smallest genus-2 triangulation
+  BOOST_TEST(contains(message_of<AC::Invalid_input>([&] { AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(9))); }),
+                      "genus 2 needs at least 10 output vertices"));
+  // a domain that does not fit
+  BOOST_TEST(contains(message_of<AC::Invalid_input>([&] {
+                        AC::remesh(s, AC::Uniform_metric(), r,
+                                   AC::parameters::number_of_vertices(std::size_t(100)).parametric_domain(AC::Parametric_domain::FLAT_TORUS));
+                      }),
+                      "flat-torus domain does not fit the input, which is a closed surface of genus 2"));
+  // with a hole it is no closed surface: no domain in this version
+  std::vector<AC::Input_surface::Face> faces(s.faces().begin() + 1, s.faces().end());
+  const AC::Input_surface holed(s.points(), faces);
+  BOOST_TEST(contains(message_of<AC::Invalid_input>([&] { AC::remesh(holed, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(100))); }),
+                      "genus 2 with 1 boundary loop"));
+  // very few sites: a valid output or a documented failure naming the reason, never a crash
+  for(std::size_t n : {10u, 12u, 20u}) {
+    try {
+      const AC::Remeshed_surface out = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+      check_output(s, out, n, 2);
+    } catch(const AC::Convergence_failure& e) {
+      const std::string m = e.what();
+      BOOST_TEST_MESSAGE(n << " sites: " << m);
+      BOOST_TEST((contains(m, "too few") || contains(m, "inverted") || contains(m, "too large") || contains(m, "band")), m);
+    }
+  }
+  BOOST_TEST((s.points() == before));
+}
