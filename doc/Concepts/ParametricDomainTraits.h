@@ -10,9 +10,9 @@
  *
  * \cgalConcept
  *
- * The domain is the plane for a disk, the unit sphere for a closed surface of genus 0 and the flat
- * torus for a closed surface of genus 1; the hyperbolic disk, the domain of closed surfaces of higher
- * genus, is future work. The generic stages use only the members listed here:
+ * The domain is the plane for a disk, the unit sphere for a closed surface of genus 0, the flat
+ * torus for a closed surface of genus 1 and the hyperbolic plane modulo a Fuchsian group (points on the
+ * hyperboloid, cells in the Klein disk) for higher genus. The generic stages use only the members listed here:
  * - `weighted_centroidal_Voronoi_tessellation()` (stage 4) calls `integrate()` for the energy, masses
  *   and centroids, `contains()` to reject L-BFGS steps that leave the domain, and `move_towards()` for
  *   Lloyd steps; it optimises the `Point`s coordinate by coordinate, and calls the optional hooks
@@ -22,10 +22,11 @@
  *   `Intrinsic_triangulation`, and `number_of_fixed_sites()`.
  *
  * How a model is built and how it places the initial sites is its own business (`remesh()` uses
- * `Planar_domain_traits::initial_sites()`, `Spherical_domain_traits::initial_sites()` and
- * `Euclidean_periodic_domain_traits::initial_sites()`).
- * A periodic domain's `Point` stands for its class: `integrate()` must accept any translate of a site
- * and return the centroid next to that translate, `dual_triangles()` must identify translates.
+ * `Planar_domain_traits::initial_sites()`, `Spherical_domain_traits::initial_sites()`,
+ * `Euclidean_periodic_domain_traits::initial_sites()` and `Hyperbolic_klein_domain_traits::initial_sites()`).
+ * A periodic domain's `Point` stands for its class: `integrate()` must accept any translate (any image
+ * under the group) of a site and return the centroid next to that translate, `dual_triangles()` must
+ * identify translates.
  *
  * Sites are ordered: the first `number_of_fixed_sites()` stay where they are (the boundary sites of a
  * planar domain; 0 for a closed domain); the CVT receives that number as its argument
@@ -35,11 +36,15 @@
  * constraint of staying on it: its cells' `centroid` is the centroid in the ambient space (so that
  * `2 mass_i (site_i - centroid_i)` is the ambient gradient of the energy), and the two optional hooks
  * below turn the unconstrained L-BFGS into a constrained one. A model without them (a flat domain) is optimised exactly
- * as before the hooks existed (the detection is at compile time).
+ * as before the hooks existed (the detection is at compile time). A domain whose distance is not the
+ * ambient one (the hyperboloid, with the hyperbolic distance) gives its cells an optional member
+ * `Point gradient`, the derivative of the cell's energy with respect to the site's ambient coordinates;
+ * the CVT then uses it instead of `2 mass (site - centroid)`, and `centroid` serves Lloyd steps only.
  *
  * \cgalHasModel `Aniso_conformal::Planar_domain_traits`
  * \cgalHasModel `Aniso_conformal::Spherical_domain_traits`
  * \cgalHasModel `Aniso_conformal::Euclidean_periodic_domain_traits`
+ * \cgalHasModel `Aniso_conformal::Hyperbolic_klein_domain_traits`
  */
 class ParametricDomainTraits {
 public:
@@ -85,7 +90,8 @@ public:
   /// @}
 
   /// \name Optional hooks of a curved domain (stage 4)
-  /// These are detected at compile time and need not exist; `Spherical_domain_traits` has both.
+  /// These are detected at compile time and need not exist; `Spherical_domain_traits` and
+  /// `Hyperbolic_klein_domain_traits` have both.
   /// @{
 
   /*!
