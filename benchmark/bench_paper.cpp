@@ -15,6 +15,7 @@
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
 #include <Aniso_conformal/make_ellipsoid.h>
+#include <Aniso_conformal/make_subdivided_surface.h>
 #include <Aniso_conformal/Image_metric.h>
 #include <Aniso_conformal/IO/read_image.h>
 #include <Aniso_conformal/Paper_metrics.h>
@@ -179,6 +180,9 @@ int main(int argc, char** argv)
       cases.push_back(analytic_case("Fig. 6 (quick)", "6", AC::make_analytic_metric_2(AC::Fig6_metric()), 200, 10, 388.11, 5112));
       cases.push_back(cyclide_case("cyclide 36x24 (quick)", "11", 36, 24, 29, 300, 100, 36, 274.10, 25920));
       cases.push_back(ellipsoid_case("ellipsoid level 3 (quick)", 3, 300, 225, 182, 10242));
+      cases.push_back(surface_case("eight 1k (quick)", "13",
+                                   [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/eight_1k.off"); }, 5, 300, 100,
+                                   91, 316, 10000));
       runs = 1;
     } else if(scaling) {
       // input size at 8000 output vertices, then output size from the 100k input (the paper's Table 2 metric)
@@ -221,6 +225,13 @@ int main(int argc, char** argv)
       cases.push_back(surface_case("knot1 (genus 1; Kitten: 134438 V, 5000 out)", "12",
                                    [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/knot1.off"); }, 5, 1000, 100,
                                    81, 271.79, 134438));
+      // Fig. 13: genus 2 and 3 through the hyperbolic disk (paper, the Eight: 91 s embedding + 316 s CVT)
+      cases.push_back(surface_case("Eight (genus 2), bound 5 (realised [1, 3.1])", "13",
+                                   [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/eight_10k.off"); }, 5, 1000, 100,
+                                   91, 316, 10000));
+      cases.push_back(surface_case("genus 3 (3torus, 4 Loop subdivisions), bound 5", "13",
+                                   [data]() { return AC::make_subdivided_surface(data + "/meshes/3torus.off", 4); }, 5, 2000, 100,
+                                   0, 0, 0));
     }
   } catch(const AC::Error& e) {
     std::cerr << "bench_paper: " << e.what() << "\n";
