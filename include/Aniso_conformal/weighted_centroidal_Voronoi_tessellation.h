@@ -125,10 +125,11 @@ Cvt_report weighted_centroidal_Voronoi_tessellation(const DomainTraits& domain,
         gs = c[s].gradient;
       else
         gs = 2.0 * c[s].mass * (x[s] - c[s].centroid);
+      // fixed-size segments: GCC 12 misreads a dynamic one assigned from a Vector2d (-Wstringop-overread)
       if constexpr(tangent_hook)
-        g.segment(Eigen::Index(i) * D, D) = domain.project_to_tangent_plane(x[s], gs);
+        g.template segment<Point::RowsAtCompileTime>(Eigen::Index(i) * D) = domain.project_to_tangent_plane(x[s], gs);
       else
-        g.segment(Eigen::Index(i) * D, D) = gs;
+        g.template segment<Point::RowsAtCompileTime>(Eigen::Index(i) * D) = gs;
     }
   };
   auto lloyd_step = [&](std::vector<Point>& x, const std::vector<Cell>& c) {
