@@ -16,6 +16,7 @@
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
+#include <Aniso_conformal/make_subdivided_surface.h>
 #include <Aniso_conformal/remesh.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -376,6 +377,32 @@ BOOST_AUTO_TEST_CASE(random_cyclides_and_ring_tori_remesh_or_throw_a_documented_
   // rarely carries a 1000x scale range or a stretch of 100: 'too few for the flat torus' or inverted triangles)
   BOOST_TEST(mild.ok >= 8);
   BOOST_TEST(strong.ok >= 1);
+}
+
+BOOST_AUTO_TEST_CASE(random_metrics_on_genus_two_and_three_remesh_or_throw_a_documented_exception)
+{
+  // the 1k Eight (genus 2) and CGAL's 3torus refined by 3 Loop subdivisions (genus 3), with the three
+  // kinds of metric of the genus-1 test in turn; the hyperbolic disk with 100 to 400 sites
+  const AC::Input_surface eight = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_DATA_DIR) + "/meshes/eight_1k.off");
+  const AC::Input_surface genus3 = AC::make_subdivided_surface(std::string(ANISO_CONFORMAL_DATA_DIR) + "/meshes/3torus.off", 3);
+  std::mt19937 rng(20261123u);
+  Outcomes mild, strong;
+  const int trials = 12;
+  for(int trial = 0; trial < trials; ++trial) {
+    const int kind = trial % 3;
+    const AC::Input_surface& s = trial % 2 ? genus3 : eight;
+    const double stretch = kind == 0 ? std::pow(4.0, uniform(rng, 0, 1)) : kind == 1 ? std::pow(100.0, uniform(rng, 0.5, 1))
+                                                                                     : std::pow(10.0, uniform(rng, 0, 1));
+    const double scale = kind == 2 ? 1000.0 : 1.0;
+    const std::vector<Eigen::Matrix3d> t = random_tensor_field(rng, s, stretch, scale);
+    const std::size_t n = std::size_t(uniform_int(rng, kind == 0 ? 200 : 100, 400));
+    const unsigned seed = unsigned(rng() % 1000);
+    run_trial(s, t, n, seed, describe(trial % 2 ? "genus-3 3torus" : "genus-2 eight", s.number_of_vertices(), stretch, scale, n, seed),
+              kind == 0 ? mild : strong);
+  }
+  report("closed genus 2 and 3, mild metrics", mild, trials / 3);
+  report("closed genus 2 and 3, stretch up to 100 or scale 1000x", strong, 2 * trials / 3);
+  BOOST_TEST(mild.ok >= 3);
 }
 
 // ------------------------------------------------------------------ BGL entry point guarantee

@@ -452,7 +452,7 @@ private:
       if(m_copies.size() > cap)
         throw Convergence_failure("hyperbolic domain: the band of " + std::to_string(band) +
                                       " around the fundamental domain needs more than " + std::to_string(cap) +
-                                      " face copies (too few sites for this surface)",
+                                      " face copies (too few sites for this surface and metric)",
                                   band);
       const int f = m_tri[key.first].face;
       for(int k = 0; k < 3; ++k) {
