@@ -152,6 +152,12 @@ BOOST_AUTO_TEST_CASE(hyperbolic_embedding_of_the_eight)
       BOOST_TEST(k[std::size_t(j)].norm() < 1.0);
     }
     if((k[1] - k[0]).x() * (k[2] - k[0]).y() - (k[1] - k[0]).y() * (k[2] - k[0]).x() <= 0) ++clockwise;
+    // the Poincare disk point p of Klein point k: k = 2 p / (1 + |p|^2)
+    for(int j = 0; j < 3; ++j) {
+      const Eigen::Vector2d& p = emb.corner_poincare[f][std::size_t(j)];
+      BOOST_TEST(p.norm() < 1.0);
+      BOOST_TEST((2 * p / (1 + p.squaredNorm()) - k[std::size_t(j)]).norm() < 1e-12);
+    }
   }
   BOOST_TEST(length_error < 1e-6);
   BOOST_TEST(clockwise == 0u);

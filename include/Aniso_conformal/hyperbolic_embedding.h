@@ -39,8 +39,10 @@ struct Hyperbolic_embedding {
   /// per face, its three corners (counterclockwise) on the hyperboloid, in the fundamental domain; the
   /// domain is centred (the hyperboloid mass centre of its corners is the apex `(1, 0, 0)`)
   std::vector<std::array<Eigen::Vector3d, 3>> corner_hyperboloid;
-  /// the same corners in the Klein disk
+  /// the same corners in the Klein disk (geodesics are chords; the CVT works there)
   std::vector<std::array<Eigen::Vector2d, 3>> corner_klein;
+  /// the same corners in the Poincare disk (conformal to the hyperbolic plane: angles are true)
+  std::vector<std::array<Eigen::Vector2d, 3>> corner_poincare;
   /// per halfedge `h`: the deck transformation that takes the copy of the face of `twin(h)` in the
   /// fundamental domain to the tile across `h` from the face of `h` (so `side_pairing[twin(h)]` is its
   /// inverse); exactly the identity where both faces are adjacent in the fundamental domain
@@ -75,7 +77,7 @@ struct Hyperbolic_embedding {
  *    angle sum `2 pi` at every vertex, by Newton's method on the strictly convex energy of Bobenko,
  *    Pinkall and Springborn, with intrinsic Delaunay flips that keep the current hyperbolic metric;
  * 2. a homology basis by tree-cotree; the surface cut along the edges not in the cotree (a disk) is
- *    unfolded breadth-first on the hyperboloid;
+ *    unfolded breadth-first on the hyperboloid, and given in the Klein and the Poincare disks;
  * 3. the deck transformation across every cut edge, from the two copies of the edge; those of the `2 g`
  *    generator edges generate the Fuchsian group;
  * 4. checks: each is a Lorentz matrix, each maps its edge onto its twin, and around every vertex the
@@ -226,8 +228,12 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
                                   std::to_string(emb.relation_error) + ")",
                               std::max({lorentz, emb.gluing_error, emb.relation_error}));
   emb.corner_klein.resize(std::size_t(nf));
+  emb.corner_poincare.resize(std::size_t(nf));
   for(int f = 0; f < nf; ++f)
-    for(int k = 0; k < 3; ++k) emb.corner_klein[std::size_t(f)][std::size_t(k)] = internal::to_klein(X[std::size_t(f)][std::size_t(k)]);
+    for(int k = 0; k < 3; ++k) {
+      emb.corner_klein[std::size_t(f)][std::size_t(k)] = internal::to_klein(X[std::size_t(f)][std::size_t(k)]);
+      emb.corner_poincare[std::size_t(f)][std::size_t(k)] = internal::to_poincare(X[std::size_t(f)][std::size_t(k)]);
+    }
 
   // ---- conformal factor (paper eq. 6): adjusted (Euclidean) area over hyperbolic area around each vertex
   std::vector<double> adjusted_area(std::size_t(nv), 0.0), domain_area(std::size_t(nv), 0.0);

@@ -41,6 +41,9 @@ inline Eigen::Vector3d normalize_on_hyperboloid(const Eigen::Vector3d& x)
 
 inline Eigen::Vector2d to_klein(const Eigen::Vector3d& x) { return Eigen::Vector2d(x.y() / x.x(), x.z() / x.x()); }
 
+// the Poincare disk point of x: the stereographic projection from (-1, 0, 0), (x1, x2) / (1 + x0)
+inline Eigen::Vector2d to_poincare(const Eigen::Vector3d& x) { return Eigen::Vector2d(x.y() / (1 + x.x()), x.z() / (1 + x.x())); }
+
 inline Eigen::Vector3d from_klein(const Eigen::Vector2d& k)
 {
   const double s = 1.0 / std::sqrt(std::max(1e-300, 1.0 - k.squaredNorm()));
