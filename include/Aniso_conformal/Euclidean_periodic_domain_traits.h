@@ -7,6 +7,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/flat_torus_embedding.h>
+#include <Aniso_conformal/internal/CVT/quotient_triangles.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
 
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -243,36 +244,11 @@ public:
                                     0);
       } while(++c != done);
     }
-    std::vector<std::array<std::size_t, 3>> tris;
-    for(auto f = pd.dt.finite_faces_begin(); f != pd.dt.finite_faces_end(); ++f) {
-      std::array<int, 3> e = {{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}};
-      if(e[0] >= int(ns) && e[1] >= int(ns) && e[2] >= int(ns)) continue;
-      std::array<std::size_t, 3> o;
-      for(int k = 0; k < 3; ++k) o[k] = std::size_t(pd.original[std::size_t(e[k])]);
-      if(o[0] == o[1] || o[1] == o[2] || o[2] == o[0])
-        throw Convergence_failure("dual mesh: " + std::to_string(ns) +
-                                      " sites are too few for the flat torus (a Delaunay triangle meets two translates of site " +
-                                      std::to_string(o[0] == o[1] || o[0] == o[2] ? o[0] : o[1]) + ")",
-                                  0);
-      // each triangle of the torus once: the translate whose lowest-numbered site is the original
-      const int k = int(std::min_element(o.begin(), o.end()) - o.begin());
-      if(e[std::size_t(k)] < int(ns)) tris.push_back(o);
-    }
-    if(tris.size() != 2 * ns)
-      throw Convergence_failure("dual mesh: the periodic Delaunay triangulation has " + std::to_string(tris.size()) +
-                                    " triangles instead of " + std::to_string(2 * ns),
-                                double(tris.size()));
-    // two sites joined by two different edges (through different translates): not a simplicial complex
-    std::map<std::pair<std::size_t, std::size_t>, int> edges;
-    for(const auto& t : tris)
-      for(int k = 0; k < 3; ++k) ++edges[std::minmax(t[std::size_t(k)], t[std::size_t((k + 1) % 3)])];
-    for(const auto& e : edges)
-      if(e.second != 2)
-        throw Convergence_failure("dual mesh: " + std::to_string(ns) + " sites are too few for the flat torus (sites " +
-                                      std::to_string(e.first.first) + " and " + std::to_string(e.first.second) +
-                                      " are joined by more than one edge)",
-                                  0);
-    return tris;
+    std::vector<std::array<int, 3>> faces;
+    for(auto f = pd.dt.finite_faces_begin(); f != pd.dt.finite_faces_end(); ++f)
+      faces.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+    return internal::quotient_triangles(faces, pd.original, ns, 2 * ns,
+                                        {"the flat torus", "translates", "the periodic Delaunay triangulation"});
   }
 
   /// the Voronoi cell of every site on the torus, as a counterclockwise polygon around the wrapped site (for pictures)

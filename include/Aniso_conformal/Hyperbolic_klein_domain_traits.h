@@ -7,6 +7,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/hyperbolic_embedding.h>
+#include <Aniso_conformal/internal/CVT/quotient_triangles.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
 #include <Aniso_conformal/internal/conformal/hyperbolic_geometry.h>
 
@@ -269,36 +270,11 @@ public:
     for(std::size_t i = 0; i < ns; ++i)
       if(pr.handle[i] == RT::Vertex_handle() || pr.handle[i]->info() != int(i))
         throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with another site on the surface", 0);
-    std::vector<std::array<std::size_t, 3>> tris;
-    for(auto f = pr.rt.finite_faces_begin(); f != pr.rt.finite_faces_end(); ++f) {
-      std::array<int, 3> e = {{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}};
-      if(e[0] >= int(ns) && e[1] >= int(ns) && e[2] >= int(ns)) continue;
-      std::array<std::size_t, 3> o;
-      for(int k = 0; k < 3; ++k) o[std::size_t(k)] = std::size_t(pr.original[std::size_t(e[std::size_t(k)])]);
-      if(o[0] == o[1] || o[1] == o[2] || o[2] == o[0])
-        throw Convergence_failure("dual mesh: " + std::to_string(ns) +
-                                      " sites are too few for the hyperbolic surface (a Delaunay triangle meets two images of site " +
-                                      std::to_string(o[0] == o[1] || o[0] == o[2] ? o[0] : o[1]) + ")",
-                                  0);
-      // each triangle of the surface once: the copy whose lowest-numbered site is the original
-      const int k = int(std::min_element(o.begin(), o.end()) - o.begin());
-      if(e[std::size_t(k)] < int(ns)) tris.push_back(o);
-    }
-    const std::size_t expected = 2 * ns + 4 * std::size_t(m_genus - 1);
-    if(tris.size() != expected)
-      throw Convergence_failure("dual mesh: the Delaunay triangulation of the hyperbolic surface has " + std::to_string(tris.size()) +
-                                    " triangles instead of " + std::to_string(expected),
-                                double(tris.size()));
-    std::map<std::pair<std::size_t, std::size_t>, int> edges;
-    for(const auto& t : tris)
-      for(int k = 0; k < 3; ++k) ++edges[std::minmax(t[std::size_t(k)], t[std::size_t((k + 1) % 3)])];
-    for(const auto& e : edges)
-      if(e.second != 2)
-        throw Convergence_failure("dual mesh: " + std::to_string(ns) + " sites are too few for the hyperbolic surface (sites " +
-                                      std::to_string(e.first.first) + " and " + std::to_string(e.first.second) +
-                                      " are joined by more than one edge)",
-                                  0);
-    return tris;
+    std::vector<std::array<int, 3>> faces;
+    for(auto f = pr.rt.finite_faces_begin(); f != pr.rt.finite_faces_end(); ++f)
+      faces.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+    return internal::quotient_triangles(faces, pr.original, ns, 2 * ns + 4 * std::size_t(m_genus - 1),
+                                        {"the hyperbolic surface", "images", "the Delaunay triangulation of the hyperbolic surface"});
   }
 
   /// the Voronoi cell of every site (its image in the fundamental domain) as a counterclockwise polygon in the Klein disk (for pictures)
