@@ -40,8 +40,8 @@ int main(int argc, char** argv)
     const AC::Remeshed_surface out = AC::remesh(ellipsoid, metric, r, np);
     const AC::Quality_report& q = r.quality;
     figure::print_report(caption, r);
-    std::printf("domain %s; conformal factor in [%.3g, %.3g]; angle distortion of the map %.3g deg mean, %.3g deg max\n",
-                r.domain.c_str(), r.conformal_factor_min, r.conformal_factor_max, r.angle_distortion[0], r.angle_distortion[1]);
+    std::printf("domain %s; conformal factor in [%.3g, %.3g]; %s\n", AC::domain_name(r.domain), r.conformal_factor_min,
+                r.conformal_factor_max, r.domain_diagnostics.summary.c_str());
     std::printf("Hausdorff distance to the input: %.3g of the bounding-box diagonal\n", r.hausdorff_distance_relative);
     const bool ok = q.G_avg >= 0.90 && q.theta_min >= 20 && q.percent_below_30 <= 0.5;
     std::printf("quality bar (G_avg >= 0.90, theta_min >= 20, %%<30 <= 0.5): %s\n", ok ? "met" : "NOT met");

@@ -42,8 +42,8 @@ int main(int argc, char** argv)
     const AC::Remeshed_surface out = AC::remesh(cyclide, metric, r, np);
     const AC::Quality_report& q = r.quality;
     figure::print_report(caption, r);
-    std::printf("domain %s, lattice a = (%.4f, %.4f), b = (%.4f, %.4f); conformal factor in [%.3g, %.3g]\n", r.domain.c_str(),
-                r.lattice[0], r.lattice[1], r.lattice[2], r.lattice[3], r.conformal_factor_min, r.conformal_factor_max);
+    std::printf("domain %s; %s; conformal factor in [%.3g, %.3g]\n", AC::domain_name(r.domain),
+                r.domain_diagnostics.summary.c_str(), r.conformal_factor_min, r.conformal_factor_max);
     std::printf("Hausdorff distance to the input: %.3g of the bounding-box diagonal\n", r.hausdorff_distance_relative);
     figure::print_paper_comparison(q, figure::Paper_quality{0.3771, 0.9068, 22.57, 52.48, 0.0187});  // Table 2
     const bool ok = q.G_avg >= 0.90 && q.theta_min >= 20 && q.percent_below_30 <= 0.5;

@@ -41,9 +41,8 @@ static AC::Quality_report run(const AC::Input_surface& surface, const std::strin
   const AC::Remeshed_surface out = AC::remesh(surface, metric, r, np);
   const AC::Quality_report& q = r.quality;
   figure::print_report(caption, r);
-  std::printf("domain %s; conformal factor in [%.3g, %.3g]; group relations hold to %.1e; %zu group elements near the "
-              "fundamental domain; Hausdorff distance %.3g of the bounding-box diagonal\n",
-              r.domain.c_str(), r.conformal_factor_min, r.conformal_factor_max, r.group_relation_error, r.group_elements,
+  std::printf("domain %s; conformal factor in [%.3g, %.3g]; %s; Hausdorff distance %.3g of the bounding-box diagonal\n",
+              AC::domain_name(r.domain), r.conformal_factor_min, r.conformal_factor_max, r.domain_diagnostics.summary.c_str(),
               r.hausdorff_distance_relative);
 
   // The CVT picture needs the sites and the domain, which remesh() keeps to itself: run its stages

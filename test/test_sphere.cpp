@@ -448,7 +448,7 @@ BOOST_AUTO_TEST_CASE(fig10_ellipsoid_meets_the_quality_bar)
   const AC::Remeshed_surface out =
       AC::remesh(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1000)));
   check_sphere_output(s, out, 1000);
-  BOOST_TEST(r.domain == "sphere");
+  BOOST_TEST((r.domain == AC::Parametric_domain::SPHERE));
   const AC::Quality_report& q = r.quality;
   BOOST_TEST_MESSAGE("Fig. 10: G_min " << q.G_min << " G_avg " << q.G_avg << " theta_min " << q.theta_min << " %<30 "
                                        << q.percent_below_30 << " Hausdorff " << r.hausdorff_distance_relative << " total "

@@ -124,7 +124,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 result.input_vertices, result.input_faces, result.background_vertices);
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
-                result.domain.c_str());
+                AC::domain_name(result.domain));
     std::printf("distance     Hausdorff distance to the input %.3g (%.3g of the bounding-box diagonal)\n",
                 result.hausdorff_distance, result.hausdorff_distance_relative);
     std::printf("quality      G_min %.4f  G_avg %.4f  theta_min %.2f  theta_avg %.2f  %%<30 %.3f\n", q.G_min, q.G_avg,
@@ -136,12 +136,8 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 result.adjustment.flips, result.adjustment.splits, result.adjustment.repaired_triangles,
                 result.conformal_iterations, result.conformal_residual, result.conformal_flips, result.cvt.iterations,
                 o.cvt.c_str());
-    if(result.domain == "hyperbolic")
-      std::printf("hyperbolic   group relations hold to %.1e; %zu group elements near the fundamental domain\n",
-                  result.group_relation_error, result.group_elements);
-    if(result.domain == "sphere")
-      std::printf("sphere       angle distortion of the conformal map: mean %.3f deg, max %.3f deg\n",
-                  result.angle_distortion[0], result.angle_distortion[1]);
+    if(!result.domain_diagnostics.summary.empty())
+      std::printf("%-12s %s\n", AC::domain_name(result.domain), result.domain_diagnostics.summary.c_str());
     std::printf("time         background %.3f s, total %.3f s (", background_seconds, background_seconds + result.total_seconds());
     for(int s = 0; s < AC::number_of_stages; ++s)
       std::printf("%s%s %.3f", s ? ", " : "", AC::stage_name(AC::Stage(s)), result.seconds[s]);

@@ -4,6 +4,7 @@
 #ifndef ANISO_CONFORMAL_INTRINSIC_TRIANGULATION_H
 #define ANISO_CONFORMAL_INTRINSIC_TRIANGULATION_H
 
+#include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Surface_point.h>
 
@@ -143,7 +144,7 @@ public:
   int flip(int h)
   {
     int t = m_twin[h];
-    if(t < 0) throw std::logic_error("Intrinsic_triangulation::flip(): boundary edge");
+    if(t < 0) throw Internal_error("Intrinsic_triangulation::flip(): boundary edge");
     int f0 = face(h), f1 = face(t);
     int a = tail(h), b = head(h), c = opposite_vertex(h), d = opposite_vertex(t);
     int hbc = next(h), hca = prev(h), had = next(t), hdb = prev(t);
@@ -239,23 +240,23 @@ public:
   /// \name Checks
   /// @{
 
-  /// throws `std::logic_error` if an invariant is broken (twins, orientation, vertex halfedges, lengths if `with_lengths`)
+  /// throws `Internal_error` if an invariant is broken (twins, orientation, vertex halfedges, lengths if `with_lengths`)
   void validate(bool with_lengths = false) const
   {
     for(int h = 0; h < int(m_twin.size()); ++h) {
       int t = m_twin[h];
       if(t >= 0) {
-        if(m_twin[t] != h) throw std::logic_error("twin(twin(h)) != h at halfedge " + std::to_string(h));
+        if(m_twin[t] != h) throw Internal_error("twin(twin(h)) != h at halfedge " + std::to_string(h));
         if(tail(t) != head(h) || head(t) != tail(h))
-          throw std::logic_error("twins with inconsistent ends at halfedge " + std::to_string(h));
+          throw Internal_error("twins with inconsistent ends at halfedge " + std::to_string(h));
         if(with_lengths && m_length[t] != m_length[h])
-          throw std::logic_error("twins with different lengths at halfedge " + std::to_string(h));
+          throw Internal_error("twins with different lengths at halfedge " + std::to_string(h));
       }
-      if(with_lengths && !(m_length[h] > 0)) throw std::logic_error("invalid length at halfedge " + std::to_string(h));
+      if(with_lengths && !(m_length[h] > 0)) throw Internal_error("invalid length at halfedge " + std::to_string(h));
     }
     for(int v = 0; v < int(m_points.size()); ++v)
       if(m_out[v] < 0 || tail(m_out[v]) != v)
-        throw std::logic_error("vertex " + std::to_string(v) + " has no valid outgoing halfedge");
+        throw Internal_error("vertex " + std::to_string(v) + " has no valid outgoing halfedge");
   }
   /// @}
 

@@ -4,9 +4,11 @@
 #ifndef ANISO_CONFORMAL_REMESHING_RESULT_H
 #define ANISO_CONFORMAL_REMESHING_RESULT_H
 
+#include <Aniso_conformal/Domain_diagnostics.h>
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include <array>
@@ -24,7 +26,8 @@ namespace Aniso_conformal {
  */
 struct Remeshing_result {
   std::array<double, number_of_stages> seconds{};  ///< wall time of each stage, indexed by `Stage`
-  std::string domain;                              ///< the parametric domain used ("plane", "sphere", "flat-torus", "hyperbolic")
+  /// the parametric domain used (`domain_name()` spells it: "plane", "sphere", "flat-torus", "hyperbolic")
+  Parametric_domain domain = Parametric_domain::AUTOMATIC;
   std::size_t input_vertices = 0;                  ///< vertices of the input
   std::size_t input_faces = 0;                     ///< faces of the input
   std::size_t background_vertices = 0;             ///< vertices of the background after adjustment
@@ -45,15 +48,9 @@ struct Remeshing_result {
   /// input's vertices to the output
   double hausdorff_distance = 0;
   double hausdorff_distance_relative = 0;          ///< `hausdorff_distance` over the input's bounding-box diagonal
-  std::array<double, 4> lattice{};                 ///< flat torus only: the reduced lattice basis (a.x, a.y, b.x, b.y)
-  /// sphere only: the angle distortion of the conformal map, mean and largest over the corners, in degrees
-  /// (`Spherical_embedding::angle_distortion_mean`, `angle_distortion_max`)
-  std::array<double, 2> angle_distortion{};
-  /// hyperbolic disk only: how well the deck transformations satisfy the group's relations (largest
-  /// entry of `product - I` around a vertex, `Hyperbolic_embedding::relation_error`)
-  double group_relation_error = 0;
-  /// hyperbolic disk only: the group elements whose tiles the CVT's band of images reached
-  std::size_t group_elements = 0;
+  /// what the domain measured (flat torus: the lattice; sphere: the angle distortion; hyperbolic disk:
+  /// the group's relation error and the tiles reached), written by the report writers as they are
+  Domain_diagnostics domain_diagnostics;
   /// total wall time
   double total_seconds() const
   {

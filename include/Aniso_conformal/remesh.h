@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,7 +100,7 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
                         " (the plane takes topological disks, the sphere closed surfaces of genus 0, the flat torus closed "
                         "surfaces of genus 1, the hyperbolic disk closed surfaces of genus 2 or more)");
   if(fits == Parametric_domain::AUTOMATIC)
-    throw Invalid_input("remesh(): the input is " + surface.topology_description() +
+    throw Remeshing_failure("remesh(): the input is " + surface.topology_description() +
                         "; this version remeshes topological disks (the plane) and closed surfaces of genus 0 (the sphere), "
                         "1 (the flat torus) and 2 or more (the hyperbolic disk)");
   return fits;
@@ -251,7 +252,7 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     throw Invalid_input("remesh(): a closed surface of genus 0 needs at least 4 output vertices (the tetrahedron), " +
                         std::to_string(n) + " were requested");
   result = Remeshing_result();
-  result.domain = domain_name(domain);
+  result.domain = domain;
   result.input_vertices = surface.number_of_vertices();
   result.input_faces = surface.number_of_faces();
 
@@ -268,7 +269,7 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   result.background_faces = itri.number_of_faces();
   result.seconds[int(Stage::EDGE_LENGTHS)] = t2.stop(vis);
   if(n > itri.number_of_vertices())
-    throw Invalid_input("remesh(): " + std::to_string(n) + " output vertices exceed what the background triangulation can carry (" +
+    throw Remeshing_failure("remesh(): " + std::to_string(n) + " output vertices exceed what the background triangulation can carry (" +
                         std::to_string(itri.number_of_vertices()) + " vertices); refine the input");
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
@@ -288,7 +289,14 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     internal::Stage_timer t3(vis, Stage::EMBEDDING);
     const Spherical_embedding emb = spherical_embedding(itri, np);
     internal::record_embedding(emb, result);
-    result.angle_distortion = {{emb.angle_distortion_mean, emb.angle_distortion_max}};
+    char text[160];
+    std::snprintf(text, sizeof(text), "angle distortion of the conformal map: mean %.3f deg, max %.3f deg",
+                  emb.angle_distortion_mean, emb.angle_distortion_max);
+    result.domain_diagnostics.summary = text;
+    result.domain_diagnostics.add("angle_distortion_mean_degrees", emb.angle_distortion_mean,
+                                  "mean over the corners of |chordal angle - adjusted angle|, degrees");
+    result.domain_diagnostics.add("angle_distortion_max_degrees", emb.angle_distortion_max,
+                                  "largest |chordal angle - adjusted angle| over the corners, degrees");
     result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
     Spherical_domain_traits traits(itri, emb, threads);
     std::vector<Spherical_domain_traits::Point> sites = traits.initial_sites(n, seed);
@@ -297,17 +305,30 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     internal::Stage_timer t3(vis, Stage::EMBEDDING);
     const Hyperbolic_embedding emb = hyperbolic_embedding(itri, np);
     internal::record_embedding(emb, result);
-    result.group_relation_error = emb.relation_error;
+    result.domain_diagnostics.add("group_relation_error", emb.relation_error,
+                                  "largest entry of (product of the side pairings around a vertex) - I");
     result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
     Hyperbolic_klein_domain_traits traits(itri, emb, threads);
     std::vector<Hyperbolic_klein_domain_traits::Point> sites = traits.initial_sites(n, seed);
     out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
-    result.group_elements = traits.number_of_group_elements();
+    result.domain_diagnostics.add("group_elements", double(traits.number_of_group_elements()),
+                                  "group elements whose tiles the CVT's band of images reached", true);
+    char text[160];
+    std::snprintf(text, sizeof(text), "group relations hold to %.1e; %zu group elements near the fundamental domain",
+                  emb.relation_error, traits.number_of_group_elements());
+    result.domain_diagnostics.summary = text;
   } else {
     internal::Stage_timer t3(vis, Stage::EMBEDDING);
     const Flat_torus_embedding emb = flat_torus_embedding(itri, np);
     internal::record_embedding(emb, result);
-    result.lattice = {{emb.lattice[0].x(), emb.lattice[0].y(), emb.lattice[1].x(), emb.lattice[1].y()}};
+    result.domain_diagnostics.add("lattice", {emb.lattice[0].x(), emb.lattice[0].y(), emb.lattice[1].x(), emb.lattice[1].y()}, 2,
+                                  "reduced lattice basis a, b by rows (units of the flat metric)");
+    result.domain_diagnostics.add("lattice_error", emb.lattice_error,
+                                  "largest distance of a cut edge's translation to the lattice, lattice coordinates");
+    char text[160];
+    std::snprintf(text, sizeof(text), "lattice a = (%.4f, %.4f), b = (%.4f, %.4f), layout error %.1e", emb.lattice[0].x(),
+                  emb.lattice[0].y(), emb.lattice[1].x(), emb.lattice[1].y(), emb.lattice_error);
+    result.domain_diagnostics.summary = text;
     result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
     Euclidean_periodic_domain_traits traits(itri, emb, threads);
     std::vector<Euclidean_periodic_domain_traits::Point> sites = traits.initial_sites(n, seed);

@@ -62,7 +62,7 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
   const Quality_report& q = r.quality;
   os << "{\n";
   for(const auto& e : extra) os << "  " << internal::json_string(e.first) << ": " << e.second << ",\n";
-  os << "  \"domain\": " << internal::json_string(r.domain) << ",\n";
+  os << "  \"domain\": " << internal::json_string(domain_name(r.domain)) << ",\n";
   os << "  \"input\": {\"vertices\": " << r.input_vertices << ", \"faces\": " << r.input_faces << "},\n";
   os << "  \"background\": {\"vertices\": " << r.background_vertices << ", \"faces\": " << r.background_faces << "},\n";
   os << "  \"output\": {\"vertices\": " << q.number_of_vertices << ", \"triangles\": " << q.number_of_triangles
@@ -89,14 +89,27 @@ inline void write_report_json(std::ostream& os, const Remeshing_result& r,
      << ", \"residual\": " << json_number(r.conformal_residual) << ", \"intrinsic_flips\": " << r.conformal_flips
      << ", \"conformal_factor_min\": " << json_number(r.conformal_factor_min)
      << ", \"conformal_factor_max\": " << json_number(r.conformal_factor_max);
-  if(r.domain == "flat-torus")
-    os << ", \"lattice\": [[" << json_number(r.lattice[0]) << ", " << json_number(r.lattice[1]) << "], ["
-       << json_number(r.lattice[2]) << ", " << json_number(r.lattice[3]) << "]]";
-  if(r.domain == "hyperbolic")
-    os << ", \"group_relation_error\": " << json_number(r.group_relation_error) << ", \"group_elements\": " << r.group_elements;
-  if(r.domain == "sphere")
-    os << ", \"angle_distortion_mean_degrees\": " << json_number(r.angle_distortion[0])
-       << ", \"angle_distortion_max_degrees\": " << json_number(r.angle_distortion[1]);
+  // the domain's own figures, whatever the domain: scalars, vectors, matrices by rows
+  for(const Domain_figure& f : r.domain_diagnostics.figures) {
+    auto number = [&](double x) { return f.integral ? std::to_string((long long)(x)) : json_number(x); };
+    os << ", " << internal::json_string(f.key) << ": ";
+    if(f.values.empty()) {
+      os << "[]";
+      continue;
+    }
+    if(f.columns == 0 && f.values.size() == 1) {
+      os << number(f.values[0]);
+      continue;
+    }
+    const std::size_t cols = f.columns == 0 ? f.values.size() : f.columns;
+    os << (f.columns == 0 ? "" : "[");
+    for(std::size_t i = 0; i < f.values.size(); ++i) {
+      if(i % cols == 0) os << (i ? "], [" : "[");
+      else os << ", ";
+      os << number(f.values[i]);
+    }
+    os << "]" << (f.columns == 0 ? "" : "]");
+  }
   os << "},\n";
   os << "  \"cvt\": {\"method\": \"" << (r.cvt.method == Cvt_method::LLOYD ? "lloyd" : "lbfgs")
      << "\", \"iterations\": " << r.cvt.iterations << ", \"energy_evaluations\": " << r.cvt.energy_evaluations

@@ -1,0 +1,80 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_INTRINSIC_FLIP_TO_DELAUNAY_H
+#define ANISO_CONFORMAL_INTERNAL_INTRINSIC_FLIP_TO_DELAUNAY_H
+
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+// Lawson's edge-flip algorithm on an intrinsic triangulation, written once for every flip the pipeline
+// makes (like geometry-central's flipToDelaunay with its flip type). What differs between the passes is
+// the rule: which edges want a flip (the metric-Delaunay test of stage 2, paper Fig. 3; the intrinsic
+// Delaunay test of a Euclidean or hyperbolic vertex-scaled metric in stage 3, Gillespie, Springborn and
+// Crane 2021) and the length the new edge gets (recomputed later, the law of cosines of the unfolded
+// quad, Ptolemy's relation, the hyperbolic law of cosines). A rule is a class with
+//   bool wants_flip(const Intrinsic_triangulation&, int h) const;     // h: an interior halfedge
+//   double flipped_length(const Intrinsic_triangulation&, int h) const;  // before the flip; NaN to leave unset
+// where wants_flip() also refuses the flips the caller cannot take (a double edge, a kept star, a fold).
+
+namespace Aniso_conformal {
+namespace internal {
+
+struct Flip_pass {
+  std::size_t flips = 0;       // flips made
+  std::size_t budget = 0;      // the bound on them
+  bool budget_hit = false;     // edges were still queued when the bound stopped the pass
+};
+
+// Flips the interior edges of `seeds` (halfedges; both of an edge may appear) and, after every flip, the
+// four edges of its quad, until no queued edge wants a flip or the budget is spent. The budget is
+// `flips_per_edge` times the number of edges first queued, plus 100: Delaunay flips terminate in exact
+// arithmetic, so a pass that hits it is cycling through rounding, and the caller decides what that means.
+template <typename FlipRule>
+Flip_pass flip_to_delaunay(Intrinsic_triangulation& itri, const FlipRule& rule, const std::vector<int>& seeds,
+                           std::size_t flips_per_edge)
+{
+  std::deque<int> queue;
+  std::vector<char> queued(itri.number_of_halfedges(), 0);
+  auto enqueue = [&](int h) {
+    const int r = itri.is_edge_representative(h) ? h : itri.twin(h);
+    if(itri.twin(r) >= 0 && !queued[std::size_t(r)]) {
+      queued[std::size_t(r)] = 1;
+      queue.push_back(r);
+    }
+  };
+  for(int h : seeds) enqueue(h);
+  Flip_pass pass;
+  pass.budget = flips_per_edge * queue.size() + 100;
+  while(!queue.empty() && pass.flips < pass.budget) {
+    const int h = queue.front();
+    queue.pop_front();
+    queued[std::size_t(h)] = 0;
+    if(itri.twin(h) < 0 || !rule.wants_flip(itri, h)) continue;
+    const double length = rule.flipped_length(itri, h);
+    const int g = itri.flip(h);
+    itri.set_length(g, length);
+    ++pass.flips;
+    for(int e : {Intrinsic_triangulation::next(g), Intrinsic_triangulation::prev(g),
+                 Intrinsic_triangulation::next(itri.twin(g)), Intrinsic_triangulation::prev(itri.twin(g))})
+      enqueue(e);
+  }
+  pass.budget_hit = !queue.empty();
+  return pass;
+}
+
+// every halfedge of `itri`, the seeds of a pass over the whole triangulation
+inline std::vector<int> all_halfedges(const Intrinsic_triangulation& itri)
+{
+  std::vector<int> h(itri.number_of_halfedges());
+  for(std::size_t i = 0; i < h.size(); ++i) h[i] = int(i);
+  return h;
+}
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_INTRINSIC_FLIP_TO_DELAUNAY_H

@@ -1,0 +1,62 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_PARAMETER_DEFAULTS_H
+#define ANISO_CONFORMAL_INTERNAL_PARAMETER_DEFAULTS_H
+
+#include <Aniso_conformal/parameters.h>
+
+#include <CGAL/Named_function_parameters.h>
+
+#include <cstddef>
+
+// The one place where each named parameter's default lives, and the one function that reads it: every
+// stage that takes a parameter reads it through these, so that a stage called alone and the same stage
+// inside remesh() always agree (they did not: max_flips_per_edge defaulted to 20 in one stage and 50 in
+// another). The manual's parameter table and the Doxygen of each stage quote these values.
+
+namespace Aniso_conformal {
+namespace internal {
+namespace defaults {
+constexpr unsigned number_of_iterations = 100;      // CVT iterations (stage 4)
+constexpr Cvt_method cvt_method = Cvt_method::LBFGS;
+constexpr unsigned random_seed = 0;
+constexpr double corner_angle = 30.0;                // degrees
+constexpr unsigned number_of_threads = 0;           // 0: all cores
+constexpr unsigned max_adjustment_rounds = 50;      // stage 2
+constexpr unsigned max_flips_per_edge = 50;         // every intrinsic flip pass (stages 2 and 3)
+constexpr unsigned max_conformal_iterations = 100;  // Newton iterations (stage 3)
+constexpr double conformal_tolerance = 1e-9;        // radians, on the angle sums
+constexpr Parametric_domain parametric_domain = Parametric_domain::AUTOMATIC;
+} // namespace defaults
+
+#define ANISO_CONFORMAL_PARAMETER_GETTER(NAME, TAG, TYPE)                                                          \
+  template <typename NamedParameters>                                                                              \
+  TYPE NAME(const NamedParameters& np)                                                                             \
+  {                                                                                                                \
+    return TYPE(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, TAG), TYPE(defaults::NAME))); \
+  }
+ANISO_CONFORMAL_PARAMETER_GETTER(number_of_iterations, CGAL::internal_np::number_of_iterations, std::size_t)
+ANISO_CONFORMAL_PARAMETER_GETTER(cvt_method, internal_np::cvt_method, Cvt_method)
+ANISO_CONFORMAL_PARAMETER_GETTER(random_seed, CGAL::internal_np::random_seed, unsigned)
+ANISO_CONFORMAL_PARAMETER_GETTER(corner_angle, internal_np::corner_angle, double)
+ANISO_CONFORMAL_PARAMETER_GETTER(number_of_threads, internal_np::number_of_threads, unsigned)
+ANISO_CONFORMAL_PARAMETER_GETTER(max_adjustment_rounds, internal_np::max_adjustment_rounds, std::size_t)
+ANISO_CONFORMAL_PARAMETER_GETTER(max_flips_per_edge, internal_np::max_flips_per_edge, std::size_t)
+ANISO_CONFORMAL_PARAMETER_GETTER(max_conformal_iterations, internal_np::max_conformal_iterations, std::size_t)
+ANISO_CONFORMAL_PARAMETER_GETTER(conformal_tolerance, internal_np::conformal_tolerance, double)
+ANISO_CONFORMAL_PARAMETER_GETTER(parametric_domain, internal_np::parametric_domain, Parametric_domain)
+#undef ANISO_CONFORMAL_PARAMETER_GETTER
+
+// the number of output vertices: required, 0 when not given
+template <typename NamedParameters>
+std::size_t number_of_vertices(const NamedParameters& np)
+{
+  return std::size_t(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, internal_np::number_of_vertices),
+                                                        std::size_t(0)));
+}
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_PARAMETER_DEFAULTS_H
