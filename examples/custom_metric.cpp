@@ -6,8 +6,9 @@
 // and isotropic elements far from it (a boundary-layer-like field).
 // Usage: custom_metric [number_of_vertices]
 
+#include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/make_square_background.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -38,7 +39,8 @@ int main(int argc, char** argv)
   try {
     const AC::Input_surface square = AC::make_square_background(metric, n);
     AC::Remeshing_result r;
-    const AC::Remeshed_surface out = AC::remesh(square, metric, r, AC::parameters::number_of_vertices(n));
+    const AC::Remeshed_surface out =
+        AC::remesh_in_domain<AC::Planar_domain>(square, metric, r, AC::parameters::number_of_vertices(n));
     std::cout << out.points.size() << " vertices; in the metric: G_avg " << r.quality.G_avg << ", theta_min "
               << r.quality.theta_min << ", " << r.quality.percent_below_30 << " % of triangles below 30 degrees\n";
   } catch(const AC::Error& e) {

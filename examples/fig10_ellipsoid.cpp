@@ -12,6 +12,7 @@
 #include "figure_common.h"
 
 #include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Spherical_domain.h>
 #include <Aniso_conformal/Spherical_domain_traits.h>
 #include <Aniso_conformal/make_ellipsoid.h>
 #include <Aniso_conformal/spherical_embedding.h>
@@ -37,7 +38,7 @@ int main(int argc, char** argv)
 
     const auto np = figure::figure_parameters(a.vertices);
     AC::Remeshing_result r;
-    const AC::Remeshed_surface out = AC::remesh(ellipsoid, metric, r, np);
+    const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(ellipsoid, metric, r, np);
     const AC::Quality_report& q = r.quality;
     figure::print_report(caption, r);
     std::printf("domain %s; conformal factor in [%.3g, %.3g]; %s\n", AC::domain_name(r.domain), r.conformal_factor_min,

@@ -14,6 +14,7 @@
 
 #include <Aniso_conformal/Curvature_metric.h>
 #include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
+#include <Aniso_conformal/Flat_torus_domain.h>
 #include <Aniso_conformal/flat_torus_embedding.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
 
@@ -39,7 +40,7 @@ int main(int argc, char** argv)
     // the mesh and its report
     const auto np = figure::figure_parameters(a.vertices);
     AC::Remeshing_result r;
-    const AC::Remeshed_surface out = AC::remesh(cyclide, metric, r, np);
+    const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Flat_torus_domain>(cyclide, metric, r, np);
     const AC::Quality_report& q = r.quality;
     figure::print_report(caption, r);
     std::printf("domain %s; %s; conformal factor in [%.3g, %.3g]\n", AC::domain_name(r.domain),

@@ -15,6 +15,7 @@
 #include "figure_common.h"
 
 #include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Hyperbolic_domain.h>
 #include <Aniso_conformal/Hyperbolic_klein_domain_traits.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/hyperbolic_embedding.h>
@@ -38,7 +39,7 @@ static AC::Quality_report run(const AC::Input_surface& surface, const std::strin
               *std::max_element(ratios.begin(), ratios.end()));
   const auto np = figure::figure_parameters(n);
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh(surface, metric, r, np);
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Hyperbolic_domain>(surface, metric, r, np);
   const AC::Quality_report& q = r.quality;
   figure::print_report(caption, r);
   std::printf("domain %s; conformal factor in [%.3g, %.3g]; %s; Hausdorff distance %.3g of the bounding-box diagonal\n",

@@ -9,6 +9,7 @@
 
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Paper_metrics.h>
+#include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/make_square_background.h>
 
 #include <iostream>
@@ -20,7 +21,7 @@ int main(int argc, char** argv)
   try {
     const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
     const AC::Input_surface square = AC::make_square_background(metric, a.vertices);  // graded like the metric
-    return figure::reproduce("fig6", "Fig. 6, unit square", square, metric, a, true);
+    return figure::reproduce<AC::Planar_domain>("fig6", "Fig. 6, unit square", square, metric, a, true);
   } catch(const AC::Error& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

@@ -10,6 +10,7 @@
 
 #include <Aniso_conformal/IO/read_image.h>
 #include <Aniso_conformal/Image_metric.h>
+#include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/make_image_background.h>
 
 #include <iostream>
@@ -22,7 +23,7 @@ int main(int argc, char** argv)
   try {
     const AC::IO::Image image = AC::IO::read_image(path);
     const AC::Image_metric metric(image, 0.1);
-    return figure::reproduce("fig8", "Fig. 8, colour image (s = 0.1)", AC::make_image_background(image), metric, a, false);
+    return figure::reproduce<AC::Planar_domain>("fig8", "Fig. 8, colour image (s = 0.1)", AC::make_image_background(image), metric, a, false);
   } catch(const AC::Error& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

@@ -12,6 +12,7 @@
 
 #include <Aniso_conformal/IO/read_image.h>
 #include <Aniso_conformal/Image_metric.h>
+#include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/make_image_background.h>
 
 #include <cstdlib>
@@ -26,7 +27,7 @@ int main(int argc, char** argv)
     const AC::IO::Image image = AC::IO::read_image(path);
     const double s = argc > 4 ? std::atof(argv[4]) : 0.2;
     const AC::Image_metric metric(image, s);
-    return figure::reproduce("fig9", "Fig. 9, CT image (s = " + std::to_string(s).substr(0, 4) + ")",
+    return figure::reproduce<AC::Planar_domain>("fig9", "Fig. 9, CT image (s = " + std::to_string(s).substr(0, 4) + ")",
                              AC::make_image_background(image), metric, a, false);
   } catch(const AC::Error& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -10,7 +10,7 @@
 
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/IO/write_svg.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -63,14 +63,14 @@ inline void print_paper_comparison(const Aniso_conformal::Quality_report& q, con
               paper.percent_below_30);
 }
 
-/// remeshes, reports and writes the pictures; `bar` prints the quality bar check (Fig. 6 and 7)
-template <typename Metric>
+/// remeshes in `Domain`, reports and writes the pictures; `bar` prints the quality bar check (Fig. 6 and 7)
+template <typename Domain, typename Metric>
 int reproduce(const std::string& name, const std::string& caption, const Aniso_conformal::Input_surface& background,
               const Metric& metric, const Arguments& a, bool bar)
 {
   namespace AC = Aniso_conformal;
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh(background, metric, r, figure_parameters(a.vertices));
+  const AC::Remeshed_surface out = AC::remesh_in_domain<Domain>(background, metric, r, figure_parameters(a.vertices));
   const AC::Quality_report& q = r.quality;
   print_report(caption, r);
   if(bar) {

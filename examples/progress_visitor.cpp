@@ -9,8 +9,9 @@
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Default_visitor.h>
 #include <Aniso_conformal/Paper_metrics.h>
+#include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/make_square_background.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -39,7 +40,8 @@ int main(int argc, char** argv)
   try {
     const AC::Input_surface square = AC::make_square_background(metric, n);
     AC::Remeshing_result r;
-    AC::remesh(square, metric, r, AC::parameters::number_of_vertices(n).visitor(std::ref(progress)));
+    AC::remesh_in_domain<AC::Planar_domain>(square, metric, r,
+                                            AC::parameters::number_of_vertices(n).visitor(std::ref(progress)));
     std::cout << "done: G_avg " << r.quality.G_avg << "\n";
   } catch(const AC::Cancelled&) {
     std::cout << "cancelled: over the budget of " << progress.budget_seconds << " s\n";

@@ -218,6 +218,22 @@ private:
 
   void validate_and_build()
   {
+    const std::map<std::pair<std::size_t, std::size_t>, std::size_t> directed = check_faces();
+    find_boundary_loops(directed);
+    check_vertex_manifoldness();
+    check_connected();
+    m_normals.assign(m_points.size(), Eigen::Vector3d::Zero());
+    for(const Face& t : m_faces) {
+      Eigen::Vector3d n = (m_points[t[1]] - m_points[t[0]]).cross(m_points[t[2]] - m_points[t[0]]);
+      for(int k = 0; k < 3; ++k) m_normals[t[k]] += n;
+    }
+    for(auto& n : m_normals) n.normalize();
+  }
+
+  // coordinates, indices, degenerate faces, orientation, non-manifold edges, isolated vertices; returns
+  // the directed edges (tail, head) -> face
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> check_faces()
+  {
     const std::size_t nv = m_points.size();
     if(nv == 0 || m_faces.empty()) throw Invalid_input("the input mesh is empty");
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
@@ -261,9 +277,13 @@ private:
       ++undirected[std::minmax(d.first.first, d.first.second)];
     for(std::size_t i = 0; i < nv; ++i)
       if(!used[i]) throw Invalid_input("vertex " + std::to_string(i) + " belongs to no face");
-
-    // Euler characteristic and boundary loops
     m_euler = int(nv) - int(undirected.size()) + int(m_faces.size());
+    return directed;
+  }
+
+  // the boundary loops, each in the orientation of its faces; a vertex on the boundary twice is non-manifold
+  void find_boundary_loops(const std::map<std::pair<std::size_t, std::size_t>, std::size_t>& directed)
+  {
     std::map<std::size_t, std::vector<std::size_t>> boundary_next;  // boundary halfedge tail -> heads
     for(const auto& d : directed)
       if(!directed.count(std::make_pair(d.first.second, d.first.first)))
@@ -287,9 +307,13 @@ private:
       }
       m_loops.push_back(loop);
     }
+  }
 
-    // vertex manifoldness: the faces around each vertex must form a single fan; two faces at v are
-    // neighbours when the vertex before v in one is the vertex after v in the other
+  // vertex manifoldness: the faces around each vertex must form a single fan; two faces at v are
+  // neighbours when the vertex before v in one is the vertex after v in the other
+  void check_vertex_manifoldness()
+  {
+    const std::size_t nv = m_points.size();
     std::vector<std::vector<std::size_t>> vfaces(nv);
     for(std::size_t f = 0; f < m_faces.size(); ++f)
       for(int k = 0; k < 3; ++k) vfaces[m_faces[f][k]].push_back(f);
@@ -312,8 +336,12 @@ private:
         throw Invalid_input("vertex " + std::to_string(v) + " is non-manifold (its faces form " +
                             std::to_string(fans) + " separate fans)");
     }
+  }
 
-    // connected components (union-find over faces' vertices)
+  // one connected component (union-find over the faces' vertices)
+  void check_connected()
+  {
+    const std::size_t nv = m_points.size();
     std::vector<std::size_t> parent(nv);
     std::iota(parent.begin(), parent.end(), 0);
     auto find = [&](std::size_t x) {
@@ -330,13 +358,6 @@ private:
     if(components != 1)
       throw Invalid_input("the input mesh has " + std::to_string(components) +
                           " connected components; remesh them one at a time");
-
-    m_normals.assign(nv, Eigen::Vector3d::Zero());
-    for(const Face& t : m_faces) {
-      Eigen::Vector3d n = (m_points[t[1]] - m_points[t[0]]).cross(m_points[t[2]] - m_points[t[0]]);
-      for(int k = 0; k < 3; ++k) m_normals[t[k]] += n;
-    }
-    for(auto& n : m_normals) n.normalize();
   }
 
   std::vector<Eigen::Vector3d> m_points;

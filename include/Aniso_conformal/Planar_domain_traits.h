@@ -164,6 +164,14 @@ public:
     sites.insert(sites.end(), inside.begin(), inside.end());
     return sites;
   }
+  /// `initial_sites(n, seed, adjusted_area)` with the area of the background in the metric
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
+  {
+    double adjusted_area = 0;
+    for(std::size_t f = 0; f < m_itri.number_of_faces(); ++f)
+      adjusted_area += internal::heron_area(m_itri.length(int(3 * f)), m_itri.length(int(3 * f + 1)), m_itri.length(int(3 * f + 2)));
+    return initial_sites(n, seed, adjusted_area);
+  }
   /// the number of fixed (boundary) sites placed by the last `initial_sites()`
   std::size_t number_of_fixed_sites() const { return m_sites_fixed; }
   /// where boundary site `i` (`i < number_of_fixed_sites()`) lies on the background boundary

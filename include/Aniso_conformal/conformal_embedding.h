@@ -7,7 +7,8 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Stage.h>
-#include <Aniso_conformal/internal/conformal/flat_conformal_newton.h>
+#include <Aniso_conformal/internal/conformal/euclidean_conformal_metric.h>
+#include <Aniso_conformal/internal/conformal/layout.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/parameters.h>
 
@@ -16,7 +17,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <string>
 #include <vector>
 
@@ -58,7 +58,7 @@ struct Planar_embedding {
  *        interior edges may be flipped
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
  *        (default `1e-9`, on the max angle-sum error in radians), `max_flips_per_edge` (default 50: the
- *        intrinsic Delaunay flips of one evaluation are at most that many per halfedge, plus 100), `visitor`
+ *        intrinsic Delaunay flips of one evaluation are at most that many per interior edge, plus 100), `visitor`
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`).
  * \throws Invalid_input if `itri` has no boundary
  * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, if the
@@ -75,60 +75,31 @@ Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
     throw Invalid_input("conformal_embedding(): the triangulation has no boundary (not a disk)");
 
   Planar_embedding emb;
-  internal::solve_flat_conformal_metric(itri, fixed, np, "conformal embedding", emb);
+  internal::solve_euclidean_conformal_metric(itri, fixed, np, "conformal embedding", emb);
 
-  // ---- layout: unfold breadth-first from the face nearest the "centre" (fewest hops to all)
+  // ---- layout: unfold breadth-first across the interior edges, each vertex placed once
   std::vector<std::array<double, 3>> L(nf);
   for(int f = 0; f < nf; ++f) L[f] = internal::scaled_face_lengths(itri, f, emb.u);
   emb.uv.assign(nv, Eigen::Vector2d::Zero());
-  std::vector<char> placed(nv, 0), done(nf, 0);
-  std::deque<int> queue;  // halfedges whose face is to be laid out across them
-  {
-    const auto& c = itri.face_vertices(0);
-    emb.uv[c[0]] = Eigen::Vector2d(0, 0);
-    emb.uv[c[1]] = Eigen::Vector2d(L[0][0], 0);
-    placed[c[0]] = placed[c[1]] = 1;
-    queue.push_back(0);  // lay out face 0 across its halfedge 0
-  }
-  while(!queue.empty()) {
-    const int h = queue.front();
-    queue.pop_front();
-    const int f = Intrinsic_triangulation::face(h);
-    if(done[f]) continue;
-    done[f] = 1;
-    const int a = itri.tail(h), b = itri.head(h), c = itri.opposite_vertex(h);
-    const int k = h % 3;
-    if(!placed[c]) {
-      // corner k+2 = c; |ac| is halfedge k+2 (c->a), |bc| is halfedge k+1 (b->c)
-      emb.uv[c] = internal::third_point(emb.uv[a], emb.uv[b], L[f][(k + 2) % 3], L[f][(k + 1) % 3]);
-      placed[c] = 1;
-    }
-    for(int j = 0; j < 3; ++j) {
-      const int t = itri.twin(3 * f + j);
-      if(t >= 0 && !done[Intrinsic_triangulation::face(t)]) queue.push_back(t);
-    }
-  }
+  std::vector<char> placed(nv, 0), done;
+  internal::unfold_breadth_first(itri, L, 0, Eigen::Vector2d(0, 0), Eigen::Vector2d(L[0][0], 0),
+                                 [&](int h) { return itri.twin(h) >= 0; }, internal::third_point, done, &emb.uv, &placed);
 
   // ---- validity and conformal factor
   std::size_t inverted = 0;
-  std::vector<double> adjusted_area(nv, 0.0), domain_area(nv, 0.0);
+  std::vector<double> domain_area(nf);
   for(int f = 0; f < nf; ++f) {
     const auto& c = itri.face_vertices(f);
     const Eigen::Vector2d e1 = emb.uv[c[1]] - emb.uv[c[0]], e2 = emb.uv[c[2]] - emb.uv[c[0]];
     const double a_dom = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
     if(!(a_dom > 0)) ++inverted;
-    const double a_adj = internal::heron_area(itri.length(3 * f), itri.length(3 * f + 1), itri.length(3 * f + 2));
-    for(int k = 0; k < 3; ++k) {
-      adjusted_area[c[k]] += a_adj;
-      domain_area[c[k]] += std::max(a_dom, 0.0);
-    }
+    domain_area[f] = std::max(a_dom, 0.0);
   }
   if(inverted > 0)
     throw Convergence_failure("conformal embedding: the layout has " + std::to_string(inverted) +
                                   " inverted or flat triangles (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               double(inverted));
-  emb.conformal_factor.resize(nv);
-  for(int v = 0; v < nv; ++v) emb.conformal_factor[v] = adjusted_area[v] / domain_area[v];
+  emb.conformal_factor = internal::vertex_conformal_factors(itri, domain_area);
   return emb;
 }
 

@@ -6,7 +6,8 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
-#include <Aniso_conformal/internal/conformal/flat_conformal_newton.h>
+#include <Aniso_conformal/internal/conformal/euclidean_conformal_metric.h>
+#include <Aniso_conformal/internal/conformal/layout.h>
 #include <Aniso_conformal/internal/conformal/tree_cotree.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/parameters.h>
@@ -14,9 +15,9 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,44 @@ inline void reduce_lattice_basis(Eigen::Vector2d& a, Eigen::Vector2d& b)
   if(a.x() * b.y() - a.y() * b.x() < 0) b = -b;
 }
 
+// The lattice of the flat torus from the layout of the cut surface: the translation across each
+// generator edge, reduced by Lagrange-Gauss; checks that the cell's area is the flat metric's `area` and
+// that every cut edge's translation is a lattice vector (Convergence_failure otherwise: an inconsistent
+// layout).
+inline void read_lattice(const Intrinsic_triangulation& itri, const Tree_cotree& tc, double area, Flat_torus_embedding& emb)
+{
+  // the translation that takes face(t)'s copy of the edge of h onto face(h)'s copy
+  auto translation = [&](int h) {
+    const int t = itri.twin(h);
+    return Eigen::Vector2d(emb.corner_uv[std::size_t(h / 3)][h % 3] - emb.corner_uv[std::size_t(t / 3)][(t % 3 + 1) % 3]);
+  };
+  Eigen::Vector2d a = translation(tc.generators[0]), b = translation(tc.generators[1]);
+  emb.homology_basis[0] = generator_loop(itri, tc, tc.generators[0]);
+  emb.homology_basis[1] = generator_loop(itri, tc, tc.generators[1]);
+  reduce_lattice_basis(a, b);
+  emb.lattice = {{a, b}};
+  const double det = a.x() * b.y() - a.y() * b.x();
+  if(!(std::abs(det - area) <= 1e-6 * area))
+    throw Convergence_failure("flat torus embedding: the lattice cell has area " + std::to_string(det) +
+                                  " but the flat metric has area " + std::to_string(area) + " (inconsistent layout)",
+                              std::abs(det - area) / area);
+  Eigen::Matrix2d B;
+  B.col(0) = a;
+  B.col(1) = b;
+  const Eigen::Matrix2d Binv = B.inverse();
+  for(int h = 0; h < int(itri.number_of_halfedges()); ++h) {
+    if(!itri.is_edge_representative(h) || tc.in_cotree[std::size_t(h)]) continue;
+    const int t = itri.twin(h);
+    const Eigen::Vector2d c0 = Binv * translation(h), c1 = Binv * translation(t);  // both ends of the edge
+    for(const Eigen::Vector2d& c : {c0, Eigen::Vector2d(-c1)})
+      emb.lattice_error = std::max({emb.lattice_error, std::abs(c.x() - std::round(c.x())), std::abs(c.y() - std::round(c.y()))});
+  }
+  if(!(emb.lattice_error <= 1e-6))
+    throw Convergence_failure("flat torus embedding: a cut edge's translation is " + std::to_string(emb.lattice_error) +
+                                  " (lattice coordinates) away from the lattice (inconsistent layout)",
+                              emb.lattice_error);
+}
+
 } // namespace internal
 
 /*!
@@ -92,11 +131,8 @@ template <typename NamedParameters = parameters::Default_named_parameters>
 Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
                                           const NamedParameters& np = parameters::default_values())
 {
-  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces()), nh = int(itri.number_of_halfedges());
-  for(int h = 0; h < nh; ++h)
-    if(itri.is_boundary_edge(h))
-      throw Invalid_input("flat_torus_embedding(): the triangulation has a boundary; the flat torus needs a closed surface");
-  const int chi = nv - nh / 2 + nf;
+  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
+  const int chi = internal::closed_surface_euler_characteristic(itri, "flat_torus_embedding()", "the flat torus");
   if(chi != 0)
     throw Invalid_input("flat_torus_embedding(): the surface has genus " + std::to_string((2 - chi) / 2) +
                         "; the flat torus needs genus 1");
@@ -104,93 +140,30 @@ Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
   Flat_torus_embedding emb;
   std::vector<char> fixed(std::size_t(nv), 0);
   fixed[0] = 1;  // the energy is invariant under a constant shift of u: fix the scale at one vertex
-  internal::solve_flat_conformal_metric(itri, fixed, np, "flat torus embedding", emb);
+  internal::solve_euclidean_conformal_metric(itri, fixed, np, "flat torus embedding", emb);
   if(emb.degenerate_triangles > 0)
     throw Convergence_failure("flat torus embedding: " + std::to_string(emb.degenerate_triangles) +
                                   " triangles are flat in the solution (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               double(emb.degenerate_triangles));
 
-  // ---- cut and unfold through the cotree
+  // ---- cut along the edges not in the cotree and unfold the disk through the cotree
   const internal::Tree_cotree tc = internal::tree_cotree(itri);
   if(tc.generators.size() != 2)
-    throw Convergence_failure("flat torus embedding: the tree-cotree decomposition found " +
-                                  std::to_string(tc.generators.size()) + " generators instead of 2",
-                              0);
+    throw Internal_error("flat torus embedding: the tree-cotree decomposition found " + std::to_string(tc.generators.size()) +
+                         " generators instead of 2");
   std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
+  std::vector<double> domain_area(static_cast<std::size_t>(nf));
   double area = 0;
   for(int f = 0; f < nf; ++f) {
     L[std::size_t(f)] = internal::scaled_face_lengths(itri, f, emb.u);
-    area += internal::heron_area(L[std::size_t(f)][0], L[std::size_t(f)][1], L[std::size_t(f)][2]);
+    domain_area[std::size_t(f)] = internal::heron_area(L[std::size_t(f)][0], L[std::size_t(f)][1], L[std::size_t(f)][2]);
+    area += domain_area[std::size_t(f)];
   }
-  emb.corner_uv.assign(std::size_t(nf), {{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}});
-  std::vector<char> done(std::size_t(nf), 0);
-  {
-    auto& c = emb.corner_uv[0];
-    c[1] = Eigen::Vector2d(L[0][0], 0);
-    c[2] = internal::third_point(c[0], c[1], L[0][2], L[0][1]);
-    done[0] = 1;
-  }
-  std::deque<int> queue(1, 0);
-  while(!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    for(int k = 0; k < 3; ++k) {
-      const int h = 3 * f + k;
-      if(!tc.in_cotree[std::size_t(h)]) continue;
-      const int t = itri.twin(h), g = Intrinsic_triangulation::face(t), j = t % 3;
-      if(done[std::size_t(g)]) continue;
-      done[std::size_t(g)] = 1;
-      auto& c = emb.corner_uv[std::size_t(g)];
-      c[j] = emb.corner_uv[std::size_t(f)][(k + 1) % 3];  // tail(t) = head(h)
-      c[(j + 1) % 3] = emb.corner_uv[std::size_t(f)][k];  // head(t) = tail(h)
-      c[(j + 2) % 3] = internal::third_point(c[j], c[(j + 1) % 3], L[std::size_t(g)][(j + 2) % 3], L[std::size_t(g)][(j + 1) % 3]);
-      queue.push_back(g);
-    }
-  }
-  // the translation that takes face(t)'s copy of the edge of h onto face(h)'s copy
-  auto translation = [&](int h) {
-    const int t = itri.twin(h);
-    return Eigen::Vector2d(emb.corner_uv[std::size_t(h / 3)][h % 3] - emb.corner_uv[std::size_t(t / 3)][(t % 3 + 1) % 3]);
-  };
-  Eigen::Vector2d a = translation(tc.generators[0]), b = translation(tc.generators[1]);
-  emb.homology_basis[0] = internal::generator_loop(itri, tc, tc.generators[0]);
-  emb.homology_basis[1] = internal::generator_loop(itri, tc, tc.generators[1]);
-  internal::reduce_lattice_basis(a, b);
-  emb.lattice = {{a, b}};
-  const double det = a.x() * b.y() - a.y() * b.x();
-  if(!(std::abs(det - area) <= 1e-6 * area))
-    throw Convergence_failure("flat torus embedding: the lattice cell has area " + std::to_string(det) +
-                                  " but the flat metric has area " + std::to_string(area) + " (inconsistent layout)",
-                              std::abs(det - area) / area);
-  Eigen::Matrix2d B;
-  B.col(0) = a;
-  B.col(1) = b;
-  const Eigen::Matrix2d Binv = B.inverse();
-  for(int h = 0; h < nh; ++h) {
-    if(!itri.is_edge_representative(h) || tc.in_cotree[std::size_t(h)]) continue;
-    const int t = itri.twin(h);
-    const Eigen::Vector2d c0 = Binv * translation(h), c1 = Binv * translation(t);  // both ends of the edge
-    for(const Eigen::Vector2d& c : {c0, Eigen::Vector2d(-c1)})
-      emb.lattice_error = std::max({emb.lattice_error, std::abs(c.x() - std::round(c.x())), std::abs(c.y() - std::round(c.y()))});
-  }
-  if(!(emb.lattice_error <= 1e-6))
-    throw Convergence_failure("flat torus embedding: a cut edge's translation is " + std::to_string(emb.lattice_error) +
-                                  " (lattice coordinates) away from the lattice (inconsistent layout)",
-                              emb.lattice_error);
-
-  // ---- conformal factor (paper eq. 6)
-  std::vector<double> adjusted_area(std::size_t(nv), 0.0), domain_area(std::size_t(nv), 0.0);
-  for(int f = 0; f < nf; ++f) {
-    const auto& c = itri.face_vertices(std::size_t(f));
-    const double a_adj = internal::heron_area(itri.length(3 * f), itri.length(3 * f + 1), itri.length(3 * f + 2));
-    const double a_dom = internal::heron_area(L[std::size_t(f)][0], L[std::size_t(f)][1], L[std::size_t(f)][2]);
-    for(int k = 0; k < 3; ++k) {
-      adjusted_area[std::size_t(c[k])] += a_adj;
-      domain_area[std::size_t(c[k])] += a_dom;
-    }
-  }
-  emb.conformal_factor.resize(std::size_t(nv));
-  for(int v = 0; v < nv; ++v) emb.conformal_factor[std::size_t(v)] = adjusted_area[std::size_t(v)] / domain_area[std::size_t(v)];
+  std::vector<char> done;
+  emb.corner_uv = internal::unfold_breadth_first(itri, L, 0, Eigen::Vector2d(0, 0), Eigen::Vector2d(L[0][0], 0),
+                                                 [&](int h) { return tc.in_cotree[std::size_t(h)] != 0; }, internal::third_point, done);
+  internal::read_lattice(itri, tc, area, emb);
+  emb.conformal_factor = internal::vertex_conformal_factors(itri, domain_area);
   return emb;
 }
 

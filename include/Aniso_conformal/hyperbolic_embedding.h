@@ -6,17 +6,20 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
-#include <Aniso_conformal/internal/conformal/hyperbolic_conformal_newton.h>
+#include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/conformal/hyperbolic_geometry.h>
+#include <Aniso_conformal/internal/conformal/hyperbolic_vertex_scaling.h>
+#include <Aniso_conformal/internal/conformal/layout.h>
+#include <Aniso_conformal/internal/conformal/newton_solver.h>
 #include <Aniso_conformal/internal/conformal/tree_cotree.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/parameters.h>
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <string>
 #include <vector>
 
@@ -69,6 +72,76 @@ struct Hyperbolic_embedding {
   double radius = 0;
 };
 
+namespace internal {
+
+// Moves the layout by the boost that takes the mass centre of its corners to the apex (1, 0, 0).
+inline void centre_on_apex(std::vector<std::array<Eigen::Vector3d, 3>>& X)
+{
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  for(const auto& c : X) m += c[0] + c[1] + c[2];
+  const Eigen::Vector3d o = normalize_on_hyperboloid(m);
+  // the boost along the direction of o: T^-1 with T the frame of o (any frame taking the apex to o)
+  const Eigen::Vector3d toward = Eigen::Vector3d(o.x(), o.y() + 1e-3, o.z());  // any other direction works
+  const Eigen::Matrix3d Tinv = lorentz_inverse(hyperbolic_frame(o, normalize_on_hyperboloid(toward)));
+  for(auto& c : X)
+    for(auto& x : c) x = normalize_on_hyperboloid(Tinv * x);
+}
+
+// The side pairing of every cut edge (the isometry taking the twin face's copy of the edge onto this
+// face's copy), the generators and their loops, and the checks: each pairing is a Lorentz matrix that
+// maps its edge onto its twin, and around every vertex the product of the pairings crossed is the
+// identity (the relations of the group, Poincare's polygon theorem). Convergence_failure otherwise.
+inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const Tree_cotree& tc, Hyperbolic_embedding& emb)
+{
+  const auto& X = emb.corner_hyperboloid;
+  const int nh = int(itri.number_of_halfedges());
+  emb.side_pairing.assign(std::size_t(nh), Eigen::Matrix3d::Identity());
+  double lorentz = 0;
+  for(int h = 0; h < nh; ++h) {
+    if(tc.in_cotree[std::size_t(h)]) continue;
+    const int t = itri.twin(h);
+    const Eigen::Vector3d& a = X[std::size_t(h / 3)][std::size_t(h % 3)];            // tail(h) in face(h)
+    const Eigen::Vector3d& b = X[std::size_t(h / 3)][std::size_t((h % 3 + 1) % 3)];  // head(h) in face(h)
+    const Eigen::Vector3d& a2 = X[std::size_t(t / 3)][std::size_t((t % 3 + 1) % 3)];  // tail(h) = head(t) in face(t)
+    const Eigen::Vector3d& b2 = X[std::size_t(t / 3)][std::size_t(t % 3)];            // head(h) = tail(t) in face(t)
+    const Eigen::Matrix3d P = hyperbolic_frame(a, b) * lorentz_inverse(hyperbolic_frame(a2, b2));
+    lorentz = std::max(lorentz, lorentz_defect(P));
+    emb.gluing_error = std::max({emb.gluing_error, hyperbolic_distance(P * a2, a), hyperbolic_distance(P * b2, b)});
+    // most cut edges (the tree's) glue the domain to itself: their pairing is the identity up to
+    // rounding, made exact so that only the true boundary of the fundamental domain carries a deck
+    // transformation (a non-trivial one moves every point by at least the shortest closed geodesic)
+    emb.side_pairing[std::size_t(h)] = (P - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 ? Eigen::Matrix3d::Identity() : P;
+  }
+  for(int h : tc.generators) {
+    emb.generators.push_back(emb.side_pairing[std::size_t(h)]);
+    emb.homology_basis.push_back(generator_loop(itri, tc, h));
+  }
+  // the relations: going once around a vertex, crossing the cut edges met, must give the identity
+  for(int v = 0; v < int(itri.number_of_vertices()); ++v) {
+    Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
+    bool crossed = false;
+    for(int h : itri.outgoing_halfedges(v)) {
+      // rotating counterclockwise from h to twin(prev(h))'s face crosses the edge of prev(h)
+      const int p = Intrinsic_triangulation::prev(h);
+      if(!tc.in_cotree[std::size_t(p)]) {
+        G = G * emb.side_pairing[std::size_t(p)];
+        crossed = true;
+      }
+    }
+    if(crossed) emb.relation_error = std::max(emb.relation_error, (G - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
+  }
+  for(const auto& c : X)
+    for(const auto& x : c) emb.radius = std::max(emb.radius, hyperbolic_distance(x, Eigen::Vector3d::UnitX()));
+  const double layout_tol = 1e-6 * std::cosh(emb.radius) * std::cosh(emb.radius);
+  if(!(lorentz <= layout_tol && emb.gluing_error <= 1e-6 && emb.relation_error <= layout_tol))
+    throw Convergence_failure("hyperbolic embedding: the layout is inconsistent (Lorentz defect " + std::to_string(lorentz) +
+                                  ", gluing error " + std::to_string(emb.gluing_error) + ", relation error " +
+                                  std::to_string(emb.relation_error) + ")",
+                              std::max({lorentz, emb.gluing_error, emb.relation_error}));
+}
+
+} // namespace internal
+
 /*!
  * \ingroup PkgAnisoConformalStages
  * computes a hyperbolic conformal metric of the closed surface `itri` of genus `g >= 2` and lays out its
@@ -96,161 +169,73 @@ struct Hyperbolic_embedding {
 template <typename NamedParameters = parameters::Default_named_parameters>
 Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const NamedParameters& np = parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
   const double pi = 3.14159265358979323846;
-  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces()), nh = int(itri.number_of_halfedges());
-  for(int h = 0; h < nh; ++h)
-    if(itri.is_boundary_edge(h))
-      throw Invalid_input("hyperbolic_embedding(): the triangulation has a boundary; the hyperbolic disk needs a closed surface");
-  const int chi = nv - nh / 2 + nf;
+  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
+  const int chi = internal::closed_surface_euler_characteristic(itri, "hyperbolic_embedding()", "the hyperbolic disk");
   if(chi >= 0 || chi % 2 != 0)
     throw Invalid_input("hyperbolic_embedding(): the surface has Euler characteristic " + std::to_string(chi) +
                         "; the hyperbolic disk needs a closed surface of genus 2 or more");
   Hyperbolic_embedding emb;
   emb.genus = (2 - chi) / 2;
 
-  const std::size_t max_it = choose_parameter(get_parameter(np, internal_np::max_conformal_iterations), 100u);
-  const double tol = choose_parameter(get_parameter(np, internal_np::conformal_tolerance), 1e-9);
-  const std::size_t flips_per_halfedge = choose_parameter(get_parameter(np, internal_np::max_flips_per_edge), 50u);
-  typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
-  internal::Hyperbolic_conformal_solution sol =
-      internal::solve_hyperbolic_conformal_metric(itri, emb.genus, max_it, tol, vis, flips_per_halfedge);
-  emb.u = std::move(sol.u);
-  emb.scale = sol.scale;
-  emb.iterations = sol.iterations;
-  emb.residual = sol.residual;
-  emb.degenerate_triangles = sol.degenerate;
-  emb.flips = sol.flips;
+  // ---- 1. the hyperbolic metric; the global scale s makes the input's Euclidean area equal to the
+  // hyperbolic area 4 pi (g - 1), so that u = 0 is a good start
+  {
+    double euclidean_area = 0;
+    for(int f = 0; f < nf; ++f) euclidean_area += internal::heron_area(itri.length(3 * f), itri.length(3 * f + 1), itri.length(3 * f + 2));
+    emb.scale = std::sqrt(4 * pi * (emb.genus - 1) / euclidean_area);
+    typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
+    internal::Conformal_solution sol =
+        internal::solve_conformal_metric(itri, internal::Hyperbolic_vertex_scaling{emb.scale}, std::vector<char>(std::size_t(nv), 0),
+                                         std::vector<double>(std::size_t(nv), 0.0), internal::Newton_bounds::from(np), vis,
+                                         "hyperbolic embedding");
+    emb.u = std::move(sol.u);
+    emb.iterations = sol.iterations;
+    emb.residual = sol.residual;
+    emb.degenerate_triangles = sol.degenerate;
+    emb.flips = sol.flips;
+  }
   if(emb.degenerate_triangles > 0)
     throw Convergence_failure("hyperbolic embedding: " + std::to_string(emb.degenerate_triangles) +
                                   " triangles are flat in the solution (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
                               double(emb.degenerate_triangles));
 
-  // ---- cut along the edges not in the cotree and unfold the disk breadth-first on the hyperboloid
+  // ---- 2. cut along the edges not in the cotree and unfold the disk breadth-first on the hyperboloid
   const internal::Tree_cotree tc = internal::tree_cotree(itri);
   if(int(tc.generators.size()) != 2 * emb.genus)
-    throw Convergence_failure("hyperbolic embedding: the tree-cotree decomposition found " + std::to_string(tc.generators.size()) +
-                                  " generators instead of " + std::to_string(2 * emb.genus),
-                              0);
+    throw Internal_error("hyperbolic embedding: the tree-cotree decomposition found " + std::to_string(tc.generators.size()) +
+                         " generators instead of " + std::to_string(2 * emb.genus));
   std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
+  std::vector<double> domain_area(static_cast<std::size_t>(nf));
   for(int f = 0; f < nf; ++f) {
     L[std::size_t(f)] = internal::hyperbolic_face_lengths(itri, f, emb.scale, emb.u);
     bool deg;
     const std::array<double, 3> a = internal::hyperbolic_corner_angles(L[std::size_t(f)], deg);
-    emb.area += pi - a[0] - a[1] - a[2];
+    domain_area[std::size_t(f)] = pi - a[0] - a[1] - a[2];
+    emb.area += domain_area[std::size_t(f)];
   }
   if(!(std::abs(emb.area - 4 * pi * (emb.genus - 1)) <= 1e-6 * emb.area))
     throw Convergence_failure("hyperbolic embedding: the hyperbolic area is " + std::to_string(emb.area) + " instead of 4 pi (g - 1) = " +
                                   std::to_string(4 * pi * (emb.genus - 1)),
                               std::abs(emb.area - 4 * pi * (emb.genus - 1)));
-  auto& X = emb.corner_hyperboloid;
-  X.assign(std::size_t(nf), {{Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitX()}});
-  std::vector<char> done(std::size_t(nf), 0);
-  X[0][1] = Eigen::Vector3d(std::cosh(L[0][0]), std::sinh(L[0][0]), 0);
-  X[0][2] = internal::hyperbolic_third_point(X[0][0], X[0][1], L[0][2], L[0][1]);
-  done[0] = 1;
-  std::deque<int> queue(1, 0);
-  while(!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    for(int k = 0; k < 3; ++k) {
-      const int h = 3 * f + k;
-      if(!tc.in_cotree[std::size_t(h)]) continue;
-      const int t = itri.twin(h), g = Intrinsic_triangulation::face(t), j = t % 3;
-      if(done[std::size_t(g)]) continue;
-      done[std::size_t(g)] = 1;
-      auto& c = X[std::size_t(g)];
-      c[std::size_t(j)] = X[std::size_t(f)][std::size_t((k + 1) % 3)];  // tail(t) = head(h)
-      c[std::size_t((j + 1) % 3)] = X[std::size_t(f)][std::size_t(k)];  // head(t) = tail(h)
-      c[std::size_t((j + 2) % 3)] = internal::hyperbolic_third_point(c[std::size_t(j)], c[std::size_t((j + 1) % 3)],
-                                                                     L[std::size_t(g)][std::size_t((j + 2) % 3)],
-                                                                     L[std::size_t(g)][std::size_t((j + 1) % 3)]);
-      queue.push_back(g);
-    }
-  }
+  std::vector<char> done;
+  emb.corner_hyperboloid = internal::unfold_breadth_first(
+      itri, L, 0, Eigen::Vector3d(Eigen::Vector3d::UnitX()), Eigen::Vector3d(std::cosh(L[0][0]), std::sinh(L[0][0]), 0),
+      [&](int h) { return tc.in_cotree[std::size_t(h)] != 0; }, internal::hyperbolic_third_point, done);
 
-  // ---- centre: the boost taking the mass centre of the corners to the apex
-  {
-    Eigen::Vector3d m = Eigen::Vector3d::Zero();
-    for(const auto& c : X) m += c[0] + c[1] + c[2];
-    const Eigen::Vector3d o = internal::normalize_on_hyperboloid(m);
-    // the boost along the direction of o: T^-1 with T the frame of o (any frame taking the apex to o)
-    const Eigen::Vector3d toward = Eigen::Vector3d(o.x(), o.y() + 1e-3, o.z());  // any other direction works
-    const Eigen::Matrix3d Tinv = internal::lorentz_inverse(internal::hyperbolic_frame(o, internal::normalize_on_hyperboloid(
-                                                                                              toward)));
-    for(auto& c : X)
-      for(auto& x : c) x = internal::normalize_on_hyperboloid(Tinv * x);
-  }
-
-  // ---- side pairings: the isometry taking the twin face's copy of the edge onto this face's copy
-  emb.side_pairing.assign(std::size_t(nh), Eigen::Matrix3d::Identity());
-  double lorentz = 0;
-  for(int h = 0; h < nh; ++h) {
-    if(tc.in_cotree[std::size_t(h)]) continue;
-    const int t = itri.twin(h);
-    const Eigen::Vector3d& a = X[std::size_t(h / 3)][std::size_t(h % 3)];            // tail(h) in face(h)
-    const Eigen::Vector3d& b = X[std::size_t(h / 3)][std::size_t((h % 3 + 1) % 3)];  // head(h) in face(h)
-    const Eigen::Vector3d& a2 = X[std::size_t(t / 3)][std::size_t((t % 3 + 1) % 3)];  // tail(h) = head(t) in face(t)
-    const Eigen::Vector3d& b2 = X[std::size_t(t / 3)][std::size_t(t % 3)];            // head(h) = tail(t) in face(t)
-    const Eigen::Matrix3d P = internal::hyperbolic_frame(a, b) * internal::lorentz_inverse(internal::hyperbolic_frame(a2, b2));
-    lorentz = std::max(lorentz, internal::lorentz_defect(P));
-    emb.gluing_error = std::max({emb.gluing_error, internal::hyperbolic_distance(P * a2, a), internal::hyperbolic_distance(P * b2, b)});
-    // most cut edges (the tree's) glue the domain to itself: their pairing is the identity up to
-    // rounding, made exact so that only the true boundary of the fundamental domain carries a deck
-    // transformation (a non-trivial one moves every point by at least the shortest closed geodesic)
-    emb.side_pairing[std::size_t(h)] = (P - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 ? Eigen::Matrix3d::Identity() : P;
-  }
-  for(int h : tc.generators) {
-    emb.generators.push_back(emb.side_pairing[std::size_t(h)]);
-    emb.homology_basis.push_back(internal::generator_loop(itri, tc, h));
-  }
-  // the relations: going once around a vertex, crossing the cut edges met, must give the identity
-  for(int v = 0; v < nv; ++v) {
-    Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
-    bool crossed = false;
-    for(int h : itri.outgoing_halfedges(v)) {
-      // rotating counterclockwise from h to twin(prev(h))'s face crosses the edge of prev(h)
-      const int p = Intrinsic_triangulation::prev(h);
-      if(!tc.in_cotree[std::size_t(p)]) {
-        G = G * emb.side_pairing[std::size_t(p)];
-        crossed = true;
-      }
-    }
-    if(crossed) emb.relation_error = std::max(emb.relation_error, (G - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
-  }
-  for(const auto& c : X)
-    for(const auto& x : c) emb.radius = std::max(emb.radius, internal::hyperbolic_distance(x, Eigen::Vector3d::UnitX()));
-  const double layout_tol = 1e-6 * std::cosh(emb.radius) * std::cosh(emb.radius);
-  if(!(lorentz <= layout_tol && emb.gluing_error <= 1e-6 && emb.relation_error <= layout_tol))
-    throw Convergence_failure("hyperbolic embedding: the layout is inconsistent (Lorentz defect " + std::to_string(lorentz) +
-                                  ", gluing error " + std::to_string(emb.gluing_error) + ", relation error " +
-                                  std::to_string(emb.relation_error) + ")",
-                              std::max({lorentz, emb.gluing_error, emb.relation_error}));
+  // ---- 3. centre the domain, 4. deck transformations and the group's relations, checked
+  internal::centre_on_apex(emb.corner_hyperboloid);
+  internal::glue_fundamental_domain(itri, tc, emb);
   emb.corner_klein.resize(std::size_t(nf));
   emb.corner_poincare.resize(std::size_t(nf));
   for(int f = 0; f < nf; ++f)
     for(int k = 0; k < 3; ++k) {
-      emb.corner_klein[std::size_t(f)][std::size_t(k)] = internal::to_klein(X[std::size_t(f)][std::size_t(k)]);
-      emb.corner_poincare[std::size_t(f)][std::size_t(k)] = internal::to_poincare(X[std::size_t(f)][std::size_t(k)]);
+      emb.corner_klein[std::size_t(f)][std::size_t(k)] = internal::to_klein(emb.corner_hyperboloid[std::size_t(f)][std::size_t(k)]);
+      emb.corner_poincare[std::size_t(f)][std::size_t(k)] = internal::to_poincare(emb.corner_hyperboloid[std::size_t(f)][std::size_t(k)]);
     }
 
-  // ---- conformal factor (paper eq. 6): adjusted (Euclidean) area over hyperbolic area around each vertex
-  std::vector<double> adjusted_area(std::size_t(nv), 0.0), domain_area(std::size_t(nv), 0.0);
-  for(int f = 0; f < nf; ++f) {
-    const auto& c = itri.face_vertices(std::size_t(f));
-    const double a = itri.length(3 * f), b = itri.length(3 * f + 1), d = itri.length(3 * f + 2), p = (a + b + d) / 2;
-    const double a_adj = std::sqrt(std::max(0.0, p * (p - a) * (p - b) * (p - d)));
-    bool deg;
-    const std::array<double, 3> ang = internal::hyperbolic_corner_angles(L[std::size_t(f)], deg);
-    const double a_dom = pi - ang[0] - ang[1] - ang[2];
-    for(int k = 0; k < 3; ++k) {
-      adjusted_area[std::size_t(c[k])] += a_adj;
-      domain_area[std::size_t(c[k])] += a_dom;
-    }
-  }
-  emb.conformal_factor.resize(std::size_t(nv));
-  for(int v = 0; v < nv; ++v) emb.conformal_factor[std::size_t(v)] = adjusted_area[std::size_t(v)] / domain_area[std::size_t(v)];
+  // ---- 5. conformal factor (paper eq. 6): adjusted (Euclidean) area over hyperbolic area around each vertex
+  emb.conformal_factor = internal::vertex_conformal_factors(itri, domain_area);
   return emb;
 }
 

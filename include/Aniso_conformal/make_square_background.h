@@ -115,7 +115,7 @@ Input_surface make_square_background(const AnisotropicMetric& metric, std::size_
       const int e = opposite.back();
       opposite.pop_back();
       if(tri.twin(e) < 0 || tri.opposite_vertex(e) != m) continue;
-      if(!internal::metric_delaunay_wants_flip(tri, e) || !internal::flip_keeps_orientation(tri, e)) continue;
+      if(!internal::Metric_delaunay_flip_rule().wants_flip(tri, e)) continue;
       const int g = tri.flip(e);  // g = d -> m in face (m, x, d); twin(g) = m -> d in face (d, y, m)
       ++flips;
       opposite.push_back(Intrinsic_triangulation::prev(g));            // x -> d, opposite m

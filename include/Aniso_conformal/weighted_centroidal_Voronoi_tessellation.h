@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/parameters.h>
 
@@ -61,6 +62,158 @@ struct Cvt_report {
   Cvt_method method = Cvt_method::LBFGS;  ///< the optimiser used
 };
 
+
+namespace internal {
+
+// The state of the CVT optimisation of weighted_centroidal_Voronoi_tessellation(): the sites, their
+// cells, the energy and its gradient over the free sites, and the L-BFGS memory (7 pairs).
+template <typename DomainTraits>
+class Cvt_optimizer {
+public:
+  typedef typename DomainTraits::Point Point;
+  typedef typename DomainTraits::Cell Cell;
+  static constexpr int D = int(Point::RowsAtCompileTime);
+
+  Cvt_optimizer(const DomainTraits& domain, std::vector<Point>& sites, std::size_t fixed, Cvt_report& report)
+    : m_domain(domain), m_sites(sites), m_fixed(fixed), m_free(sites.size() - fixed), m_report(report)
+  {
+    m_energy = energy_of(m_sites, m_cells);
+    m_report.energy.push_back(m_energy);
+    for(const Cell& c : m_cells) m_total_mass += c.mass;
+    gradient_of(m_sites, m_cells, m_g);
+  }
+  std::size_t number_of_free_sites() const { return m_free; }
+  double energy() const { return m_energy; }
+  double relative_gradient_norm() const { return m_total_mass > 0 ? m_g.norm() / m_total_mass : 0; }
+
+  // moves every free site to its centroid, as far as the domain allows (forgets the L-BFGS memory)
+  void lloyd_step()
+  {
+    m_S.clear(); m_Y.clear(); m_RHO.clear();
+    for(std::size_t s = m_fixed; s < m_sites.size(); ++s)
+      if(m_cells[s].mass > 0) m_sites[s] = m_domain.move_towards(m_sites[s], m_cells[s].centroid);
+    m_energy = energy_of(m_sites, m_cells);
+    gradient_of(m_sites, m_cells, m_g);
+    m_report.energy.push_back(m_energy);
+  }
+
+  // One L-BFGS iteration: the preconditioned two-loop direction, an Armijo backtracking line search (12
+  // halvings) that also rejects steps leaving the domain; returns false, changing nothing, if it fails.
+  bool lbfgs_step()
+  {
+    Eigen::VectorXd d = direction();
+    double slope = m_g.dot(d);
+    if(!(slope < 0)) {  // not a descent direction: restart from the preconditioned gradient
+      m_S.clear(); m_Y.clear(); m_RHO.clear();
+      for(std::size_t i = 0; i < m_free; ++i) {
+        const double m = m_cells[m_fixed + i].mass;
+        d.segment(Eigen::Index(i) * D, D) = -m_g.segment(Eigen::Index(i) * D, D) * (m > 0 ? 0.5 / m : 0.0);
+      }
+      slope = m_g.dot(d);
+    }
+    std::vector<Point> trial = m_sites;
+    std::vector<Cell> trial_cells;
+    double step = 1.0, E_trial = m_energy;
+    bool accepted = false;
+    for(int k = 0; k < 12 && !accepted; ++k, step *= 0.5) {
+      bool inside = true;
+      for(std::size_t i = 0; i < m_free && inside; ++i) {
+        const std::size_t s = m_fixed + i;
+        if constexpr(Has_project_to_domain<DomainTraits>::value)
+          trial[s] = m_domain.project_to_domain(Point(m_sites[s] + step * d.segment(Eigen::Index(i) * D, D)));
+        else
+          trial[s] = m_sites[s] + step * d.segment(Eigen::Index(i) * D, D);
+        inside = m_domain.contains(trial[s]);
+      }
+      if(!inside) continue;
+      E_trial = energy_of(trial, trial_cells);
+      accepted = E_trial <= m_energy + 1e-4 * step * slope;
+    }
+    if(!accepted) return false;
+    Eigen::VectorXd g_new;
+    gradient_of(trial, trial_cells, g_new);
+    Eigen::VectorXd s_vec(m_g.size()), y_vec = g_new - m_g;
+    for(std::size_t i = 0; i < m_free; ++i)
+      s_vec.segment(Eigen::Index(i) * D, D) = trial[m_fixed + i] - m_sites[m_fixed + i];
+    const double sy = s_vec.dot(y_vec);
+    if(sy > 1e-16 * s_vec.squaredNorm()) {
+      m_S.push_back(s_vec); m_Y.push_back(y_vec); m_RHO.push_back(1.0 / sy);
+      if(m_S.size() > memory) { m_S.pop_front(); m_Y.pop_front(); m_RHO.pop_front(); }
+    }
+    m_sites.swap(trial);
+    m_cells.swap(trial_cells);
+    m_energy = E_trial;
+    m_g.swap(g_new);
+    m_report.energy.push_back(m_energy);
+    return true;
+  }
+
+private:
+  static constexpr std::size_t memory = 7;
+
+  double energy_of(const std::vector<Point>& x, std::vector<Cell>& c)
+  {
+    m_domain.integrate(x, c);
+    ++m_report.energy_evaluations;
+    double e = 0;
+    for(const Cell& cell : c) e += cell.energy;
+    return e;
+  }
+  void gradient_of(const std::vector<Point>& x, const std::vector<Cell>& c, Eigen::VectorXd& g) const
+  {
+    g.resize(Eigen::Index(m_free) * D);
+    for(std::size_t i = 0; i < m_free; ++i) {
+      const std::size_t s = m_fixed + i;
+      Point gs;
+      if constexpr(Has_cell_gradient<Cell>::value)
+        gs = c[s].gradient;
+      else
+        gs = 2.0 * c[s].mass * (x[s] - c[s].centroid);
+      // fixed-size segments: GCC 12 misreads a dynamic one assigned from a Vector2d (-Wstringop-overread)
+      if constexpr(Has_project_to_tangent_plane<DomainTraits>::value)
+        g.template segment<Point::RowsAtCompileTime>(Eigen::Index(i) * D) = m_domain.project_to_tangent_plane(x[s], gs);
+      else
+        g.template segment<Point::RowsAtCompileTime>(Eigen::Index(i) * D) = gs;
+    }
+  }
+  // the two-loop recursion with the mass preconditioner H0 = diag(1 / (2 m_i)), projected on the tangent planes
+  Eigen::VectorXd direction() const
+  {
+    Eigen::VectorXd q = m_g, alpha(m_S.size());
+    for(int k = int(m_S.size()) - 1; k >= 0; --k) {
+      alpha[k] = m_RHO[k] * m_S[k].dot(q);
+      q -= alpha[k] * m_Y[k];
+    }
+    for(std::size_t i = 0; i < m_free; ++i) {
+      const double m = m_cells[m_fixed + i].mass;
+      q.segment(Eigen::Index(i) * D, D) *= (m > 0 ? 0.5 / m : 0.0);
+    }
+    for(std::size_t k = 0; k < m_S.size(); ++k) {
+      const double beta = m_RHO[k] * m_Y[k].dot(q);
+      q += (alpha[k] - beta) * m_S[k];
+    }
+    Eigen::VectorXd d = -q;
+    if constexpr(Has_project_to_tangent_plane<DomainTraits>::value)
+      for(std::size_t i = 0; i < m_free; ++i) {
+        const Point di = d.segment(Eigen::Index(i) * D, D);
+        d.segment(Eigen::Index(i) * D, D) = m_domain.project_to_tangent_plane(m_sites[m_fixed + i], di);
+      }
+    return d;
+  }
+
+  const DomainTraits& m_domain;
+  std::vector<Point>& m_sites;
+  std::size_t m_fixed, m_free;
+  Cvt_report& m_report;
+  std::vector<Cell> m_cells;
+  double m_energy = 0, m_total_mass = 0;
+  Eigen::VectorXd m_g;
+  std::deque<Eigen::VectorXd> m_S, m_Y;
+  std::deque<double> m_RHO;
+};
+
+} // namespace internal
+
 /*!
  * \ingroup PkgAnisoConformalStages
  * optimises `sites` into a weighted centroidal Voronoi tessellation of `domain` (stage 4): minimises
@@ -93,141 +246,24 @@ Cvt_report weighted_centroidal_Voronoi_tessellation(const DomainTraits& domain,
                                                     std::size_t number_of_fixed_sites,
                                                     const NamedParameters& np = parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  typedef typename DomainTraits::Point Point;
-  typedef typename DomainTraits::Cell Cell;
-  const std::size_t max_it = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 100u);
-  const Cvt_method method = choose_parameter(get_parameter(np, internal_np::cvt_method), Cvt_method::LBFGS);
+  const std::size_t max_it = internal::number_of_iterations(np);
+  const Cvt_method method = internal::cvt_method(np);
   typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
-
-  const int D = int(Point::RowsAtCompileTime);
-  const std::size_t ns = sites.size(), nfree = ns - number_of_fixed_sites;
-  const Eigen::Index nvar = Eigen::Index(nfree) * D;
   Cvt_report report;
   report.method = method;
-  std::vector<Cell> cells;
-  auto energy_of = [&](const std::vector<Point>& x, std::vector<Cell>& c) {
-    domain.integrate(x, c);
-    ++report.energy_evaluations;
-    double e = 0;
-    for(const Cell& cell : c) e += cell.energy;
-    return e;
-  };
-  constexpr bool tangent_hook = internal::Has_project_to_tangent_plane<DomainTraits>::value;
-  constexpr bool domain_hook = internal::Has_project_to_domain<DomainTraits>::value;
-  auto gradient_of = [&](const std::vector<Point>& x, const std::vector<Cell>& c, Eigen::VectorXd& g) {
-    g.resize(nvar);
-    for(std::size_t i = 0; i < nfree; ++i) {
-      const std::size_t s = number_of_fixed_sites + i;
-      Point gs;
-      if constexpr(internal::Has_cell_gradient<Cell>::value)
-        gs = c[s].gradient;
-      else
-        gs = 2.0 * c[s].mass * (x[s] - c[s].centroid);
-      // fixed-size segments: GCC 12 misreads a dynamic one assigned from a Vector2d (-Wstringop-overread)
-      if constexpr(tangent_hook)
-        g.template segment<Point::RowsAtCompileTime>(Eigen::Index(i) * D) = domain.project_to_tangent_plane(x[s], gs);
-      else
-        g.template segment<Point::RowsAtCompileTime>(Eigen::Index(i) * D) = gs;
+  internal::Cvt_optimizer<DomainTraits> opt(domain, sites, number_of_fixed_sites, report);
+  for(std::size_t it = 0; it < max_it && opt.number_of_free_sites() > 0; ++it) {
+    if(method == Cvt_method::LBFGS && opt.lbfgs_step()) {
+      report.iterations = it + 1;
+      if(!vis.on_iteration(Stage::CVT, it + 1, max_it, opt.energy())) throw Cancelled("cancelled by the visitor during the CVT");
+      continue;
     }
-  };
-  auto lloyd_step = [&](std::vector<Point>& x, const std::vector<Cell>& c) {
-    for(std::size_t s = number_of_fixed_sites; s < ns; ++s)
-      if(c[s].mass > 0) x[s] = domain.move_towards(x[s], c[s].centroid);
-  };
-
-  double E = energy_of(sites, cells);
-  report.energy.push_back(E);
-  const double total_mass = [&] { double m = 0; for(const Cell& c : cells) m += c.mass; return m; }();
-  Eigen::VectorXd g, g_new;
-  gradient_of(sites, cells, g);
-  std::deque<Eigen::VectorXd> S, Y;
-  std::deque<double> RHO;
-  const std::size_t memory = 7;
-
-  for(std::size_t it = 0; it < max_it && nfree > 0; ++it) {
-    if(method == Cvt_method::LLOYD) {
-      lloyd_step(sites, cells);
-      E = energy_of(sites, cells);
-    } else {
-      // two-loop recursion with the mass preconditioner H0 = diag(1 / (2 m_i))
-      Eigen::VectorXd q = g, alpha(S.size());
-      for(int k = int(S.size()) - 1; k >= 0; --k) {
-        alpha[k] = RHO[k] * S[k].dot(q);
-        q -= alpha[k] * Y[k];
-      }
-      for(std::size_t i = 0; i < nfree; ++i) {
-        const double m = cells[number_of_fixed_sites + i].mass;
-        q.segment(Eigen::Index(i) * D, D) *= (m > 0 ? 0.5 / m : 0.0);
-      }
-      for(std::size_t k = 0; k < S.size(); ++k) {
-        const double beta = RHO[k] * Y[k].dot(q);
-        q += (alpha[k] - beta) * S[k];
-      }
-      Eigen::VectorXd d = -q;
-      if constexpr(tangent_hook)
-        for(std::size_t i = 0; i < nfree; ++i) {
-          const Point di = d.segment(Eigen::Index(i) * D, D);
-          d.segment(Eigen::Index(i) * D, D) = domain.project_to_tangent_plane(sites[number_of_fixed_sites + i], di);
-        }
-      double slope = g.dot(d);
-      if(!(slope < 0)) {  // not a descent direction: restart from the preconditioned gradient
-        S.clear(); Y.clear(); RHO.clear();
-        for(std::size_t i = 0; i < nfree; ++i) {
-          const double m = cells[number_of_fixed_sites + i].mass;
-          d.segment(Eigen::Index(i) * D, D) = -g.segment(Eigen::Index(i) * D, D) * (m > 0 ? 0.5 / m : 0.0);
-        }
-        slope = g.dot(d);
-      }
-      std::vector<Point> trial = sites;
-      std::vector<Cell> trial_cells;
-      double step = 1.0, E_trial = E;
-      bool accepted = false;
-      for(int k = 0; k < 12 && !accepted; ++k, step *= 0.5) {
-        bool inside = true;
-        for(std::size_t i = 0; i < nfree && inside; ++i) {
-          const std::size_t s = number_of_fixed_sites + i;
-          if constexpr(domain_hook)
-            trial[s] = domain.project_to_domain(Point(sites[s] + step * d.segment(Eigen::Index(i) * D, D)));
-          else
-            trial[s] = sites[s] + step * d.segment(Eigen::Index(i) * D, D);
-          inside = domain.contains(trial[s]);
-        }
-        if(!inside) continue;
-        E_trial = energy_of(trial, trial_cells);
-        accepted = E_trial <= E + 1e-4 * step * slope;
-      }
-      if(accepted) {
-        gradient_of(trial, trial_cells, g_new);
-        Eigen::VectorXd s_vec(nvar), y_vec = g_new - g;
-        for(std::size_t i = 0; i < nfree; ++i)
-          s_vec.segment(Eigen::Index(i) * D, D) = trial[number_of_fixed_sites + i] - sites[number_of_fixed_sites + i];
-        const double sy = s_vec.dot(y_vec);
-        if(sy > 1e-16 * s_vec.squaredNorm()) {
-          S.push_back(s_vec); Y.push_back(y_vec); RHO.push_back(1.0 / sy);
-          if(S.size() > memory) { S.pop_front(); Y.pop_front(); RHO.pop_front(); }
-        }
-        sites.swap(trial);
-        cells.swap(trial_cells);
-        E = E_trial;
-        g.swap(g_new);
-        report.energy.push_back(E);
-        report.iterations = it + 1;
-        if(!vis.on_iteration(Stage::CVT, it + 1, max_it, E)) throw Cancelled("cancelled by the visitor during the CVT");
-        continue;
-      }
-      ++report.lloyd_fallbacks;
-      S.clear(); Y.clear(); RHO.clear();
-      lloyd_step(sites, cells);
-      E = energy_of(sites, cells);
-    }
-    gradient_of(sites, cells, g);
-    report.energy.push_back(E);
+    if(method == Cvt_method::LBFGS) ++report.lloyd_fallbacks;  // the line search failed
+    opt.lloyd_step();
     report.iterations = it + 1;
-    if(!vis.on_iteration(Stage::CVT, it + 1, max_it, E)) throw Cancelled("cancelled by the visitor during the CVT");
+    if(!vis.on_iteration(Stage::CVT, it + 1, max_it, opt.energy())) throw Cancelled("cancelled by the visitor during the CVT");
   }
-  report.gradient_norm = total_mass > 0 ? g.norm() / total_mass : 0;
+  report.gradient_norm = opt.relative_gradient_norm();
   return report;
 }
 

@@ -74,6 +74,13 @@ inline std::vector<int> all_halfedges(const Intrinsic_triangulation& itri)
   return h;
 }
 
+// a pass over every edge of `itri`
+template <typename FlipRule>
+Flip_pass flip_to_delaunay(Intrinsic_triangulation& itri, const FlipRule& rule, std::size_t flips_per_edge)
+{
+  return flip_to_delaunay(itri, rule, all_halfedges(itri), flips_per_edge);
+}
+
 } // namespace internal
 } // namespace Aniso_conformal
 

@@ -1,0 +1,81 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_SPHERICAL_DOMAIN_H
+#define ANISO_CONFORMAL_SPHERICAL_DOMAIN_H
+
+#include <Aniso_conformal/Domain_diagnostics.h>
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/Spherical_domain_traits.h>
+#include <Aniso_conformal/parameters.h>
+#include <Aniso_conformal/spherical_embedding.h>
+
+#include <cstddef>
+#include <cstdio>
+#include <string>
+
+/// \file Spherical_domain.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalDomains
+ * the unit sphere, for closed surfaces of genus 0: stage 3 is `spherical_embedding()` (a planar
+ * discrete conformal map of the punctured surface, inverse stereographic projection, Moebius
+ * centring), stages 4 and 5 run in `Spherical_domain_traits`. Reports the angle distortion of the map.
+ *
+ * \cgalModels `ParametricDomain`
+ */
+struct Spherical_domain {
+  typedef Spherical_embedding Embedding;   ///< result of stage 3
+  typedef Spherical_domain_traits Traits;  ///< the domain of stages 4 and 5
+  static constexpr Parametric_domain kind = Parametric_domain::SPHERE;  ///< its tag
+
+  /// the topologies it takes, in words
+  static const char* topology() { return "closed surfaces of genus 0"; }
+  /// `true` for a closed surface of genus 0
+  static bool fits(const Input_surface& s) { return s.boundary_loops().empty() && s.genus() == 0; }
+  /// \throws Invalid_input below 4 vertices (the tetrahedron)
+  static void check_number_of_vertices(const Input_surface&, std::size_t n)
+  {
+    if(n < 4)
+      throw Invalid_input("remesh(): a closed surface of genus 0 needs at least 4 output vertices (the tetrahedron), " +
+                          std::to_string(n) + " were requested");
+  }
+  /// stage 3: `spherical_embedding()`
+  template <typename NamedParameters>
+  static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)
+  {
+    return spherical_embedding(itri, np);
+  }
+  /// the domain traits of stages 4 and 5, `threads` workers (0: all cores)
+  static Traits make_traits(const Intrinsic_triangulation& itri, const Embedding& emb, unsigned threads)
+  {
+    return Traits(itri, emb, threads);
+  }
+  /// the angle distortion of the map (degrees)
+  static Domain_diagnostics diagnostics(const Embedding& emb, const Traits&)
+  {
+    Domain_diagnostics d;
+    d.add("angle_distortion_mean_degrees", emb.angle_distortion_mean,
+          "mean over the corners of |chordal angle - adjusted angle|, degrees");
+    d.add("angle_distortion_max_degrees", emb.angle_distortion_max, "largest |chordal angle - adjusted angle| over the corners, degrees");
+    char text[160];
+    std::snprintf(text, sizeof(text), "angle distortion of the conformal map: mean %.3f deg, max %.3f deg", emb.angle_distortion_mean,
+                  emb.angle_distortion_max);
+    d.summary = text;
+    return d;
+  }
+  /// what an inverted output triangle most likely means here
+  static const char* inverted_triangles_hint()
+  {
+    return "the output is too coarse for thin or strongly curved parts of the surface, or the metric too strong for the "
+           "background (more vertices or a finer input may help)";
+  }
+};
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_SPHERICAL_DOMAIN_H

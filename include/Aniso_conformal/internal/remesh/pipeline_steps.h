@@ -1,0 +1,216 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_REMESH_PIPELINE_STEPS_H
+#define ANISO_CONFORMAL_INTERNAL_REMESH_PIPELINE_STEPS_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/Remeshing_result.h>
+#include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/parameter_defaults.h>
+#include <Aniso_conformal/internal/tensor.h>
+#include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+// The steps of remesh_in_domain() that do not depend on the domain: stages 1, 2, 4, 5 and 6 around the
+// domain's stage 3.
+
+namespace Aniso_conformal {
+namespace internal {
+
+// times one stage and tells the visitor when it starts and ends
+class Stage_timer {
+public:
+  template <typename Visitor>
+  Stage_timer(Visitor& vis, Stage s) : m_stage(s), m_start(std::chrono::steady_clock::now()) { vis.on_stage_started(s); }
+  template <typename Visitor>
+  double stop(Visitor& vis)
+  {
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    vis.on_stage_finished(m_stage, t);
+    return t;
+  }
+
+private:
+  Stage m_stage;
+  std::chrono::steady_clock::time_point m_start;
+};
+
+// Marks as corners the input boundary vertices whose boundary turns by more than `angle_deg`.
+inline std::size_t mark_corners(const Input_surface& s, Intrinsic_triangulation& itri, double angle_deg)
+{
+  const double limit = angle_deg * 3.14159265358979323846 / 180.0;
+  std::size_t n = 0;
+  for(const auto& loop : s.boundary_loops())
+    for(std::size_t i = 0; i < loop.size(); ++i) {
+      const Eigen::Vector3d& p = s.points()[loop[(i + loop.size() - 1) % loop.size()]];
+      const Eigen::Vector3d& v = s.points()[loop[i]];
+      const Eigen::Vector3d& q = s.points()[loop[(i + 1) % loop.size()]];
+      const Eigen::Vector3d a = v - p, b = q - v;
+      const double turn = std::atan2(a.cross(b).norm(), a.dot(b));
+      if(turn > limit) {
+        itri.set_corner(int(loop[i]), true);
+        ++n;
+      }
+    }
+  return n;
+}
+
+// stages 1 and 2: the metric at the input vertices, the corners of the boundary, the adjusted lengths
+template <typename AnisotropicMetric, typename NamedParameters, typename Visitor>
+Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, const AnisotropicMetric& metric,
+                                                const NamedParameters& np, Visitor& vis, Remeshing_result& result)
+{
+  Stage_timer t1(vis, Stage::METRIC);
+  Intrinsic_triangulation itri(surface, compute_metric_square_roots(surface, metric));
+  result.corners = mark_corners(surface, itri, corner_angle(np));
+  result.seconds[int(Stage::METRIC)] = t1.stop(vis);
+  Stage_timer t2(vis, Stage::EDGE_LENGTHS);
+  result.adjustment = adjust_edge_lengths(itri, surface, np);
+  result.background_vertices = itri.number_of_vertices();
+  result.background_faces = itri.number_of_faces();
+  result.seconds[int(Stage::EDGE_LENGTHS)] = t2.stop(vis);
+  return itri;
+}
+
+// the figures every embedding has
+template <typename Embedding>
+void record_embedding(const Embedding& emb, Remeshing_result& result)
+{
+  result.conformal_iterations = emb.iterations;
+  result.conformal_residual = emb.residual;
+  result.conformal_flips = emb.flips;
+  result.conformal_factor_min = *std::min_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+  result.conformal_factor_max = *std::max_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+}
+
+// stages 4 and 5, the same for every domain
+template <typename DomainTraits, typename NamedParameters, typename Visitor>
+Remeshed_surface cvt_and_dual_mesh(const Input_surface& surface, const Intrinsic_triangulation& itri, const DomainTraits& domain,
+                                   std::vector<typename DomainTraits::Point>& sites, const NamedParameters& np, Visitor& vis,
+                                   Remeshing_result& result)
+{
+  Stage_timer t4(vis, Stage::CVT);
+  result.boundary_sites = domain.number_of_fixed_sites();
+  result.cvt = weighted_centroidal_Voronoi_tessellation(domain, sites, domain.number_of_fixed_sites(), np);
+  result.seconds[int(Stage::CVT)] = t4.stop(vis);
+  Stage_timer t5(vis, Stage::DUAL_MESH);
+  Remeshed_surface out = extract_dual_mesh(surface, itri, domain, sites);
+  result.seconds[int(Stage::DUAL_MESH)] = t5.stop(vis);
+  return out;
+}
+
+// The output as a validated surface: a 2-manifold, consistently oriented, connected, with the input's
+// genus and number of boundary loops; also gives the closest-point queries of the Hausdorff distance.
+inline Input_surface check_output_topology(const Remeshed_surface& out, const Input_surface& input)
+{
+  std::vector<Input_surface::Face> faces(out.faces.begin(), out.faces.end());
+  try {
+    Input_surface s(out.points, std::move(faces));
+    if(s.genus() != input.genus() || s.boundary_loops().size() != input.boundary_loops().size())
+      throw Convergence_failure("remesh(): the output is " + s.topology_description() + " but the input is " +
+                                    input.topology_description(),
+                                0);
+    return s;
+  } catch(const Invalid_input& e) {
+    throw Convergence_failure(std::string("remesh(): the output is not a valid surface: ") + e.what(), 0);
+  }
+}
+
+// symmetric Hausdorff distance, sampled (see Remeshing_result::hausdorff_distance)
+inline double hausdorff_distance(const Input_surface& input, const Input_surface& output)
+{
+  double d = 0;
+  for(const Eigen::Vector3d& p : input.points()) d = std::max(d, (output.project(p).position - p).norm());
+  const auto& P = output.points();
+  for(const auto& f : output.faces()) {
+    const Eigen::Vector3d a = P[f[0]], b = P[f[1]], c = P[f[2]];
+    for(const Eigen::Vector3d& q : {a, Eigen::Vector3d((a + b) / 2), Eigen::Vector3d((b + c) / 2), Eigen::Vector3d((c + a) / 2),
+                                    Eigen::Vector3d((a + b + c) / 3)})
+      d = std::max(d, (input.project(q).position - q).norm());
+  }
+  return d;
+}
+
+// the output triangles whose normal disagrees with the input's normals at their corners (the +z axis
+// for a planar input)
+inline std::size_t count_inverted_triangles(const Input_surface& surface, const Remeshed_surface& out)
+{
+  std::size_t inverted = 0;
+  for(const auto& f : out.faces) {
+    const Eigen::Vector3d nf = (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]);
+    Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+    for(int k = 0; k < 3; ++k) {
+      const Surface_point& sp = out.surface_points[f[k]];
+      for(int j = 0; j < 3; ++j) ref += sp.barycentric[j] * surface.vertex_normals()[sp.vertices[j]];
+    }
+    if(surface.is_planar()) ref = Eigen::Vector3d(0, 0, 1);
+    if(!(nf.dot(ref) > 0)) ++inverted;
+  }
+  return inverted;
+}
+
+// Stage 6: quality in the metric, then the checks (no inverted triangle, whose message ends with the
+// domain's `hint`; the input's topology) and the Hausdorff distance to the input.
+template <typename AnisotropicMetric, typename Visitor>
+void measure_and_check_output(const Input_surface& surface, const AnisotropicMetric& metric, const Remeshed_surface& out,
+                              const char* hint, Visitor& vis, Remeshing_result& result)
+{
+  Stage_timer t6(vis, Stage::QUALITY);
+  std::vector<Eigen::Matrix3d> Q(out.points.size());
+  for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = symmetric_sqrt(metric.tensor(out.surface_points[i]));
+  result.quality = compute_mesh_quality(out.points, out.faces, Q);
+  result.inverted_triangles = count_inverted_triangles(surface, out);
+  if(result.inverted_triangles > 0)
+    throw Convergence_failure("remesh(): the output has " + std::to_string(result.inverted_triangles) +
+                                  " inverted or degenerate triangles (G_min " + std::to_string(result.quality.G_min) + "): " + hint,
+                              double(result.inverted_triangles));
+  const Input_surface checked = check_output_topology(out, surface);
+  result.hausdorff_distance = hausdorff_distance(surface, checked);
+  result.hausdorff_distance_relative = result.hausdorff_distance / surface.bounding_box_diagonal();
+  result.seconds[int(Stage::QUALITY)] = t6.stop(vis);
+}
+
+// Writes `out` into the face graph `out_mesh`, which changes only on success (built aside, then assigned).
+template <typename OutputMesh>
+void copy_to_face_graph(const Remeshed_surface& out, OutputMesh& out_mesh)
+{
+  typedef typename boost::graph_traits<OutputMesh>::vertex_descriptor vertex_descriptor;
+  OutputMesh built;
+  auto vpm = get(CGAL::vertex_point, built);
+  typedef typename boost::property_traits<decltype(vpm)>::value_type Point;
+  std::vector<vertex_descriptor> vd(out.points.size());
+  for(std::size_t i = 0; i < vd.size(); ++i) {
+    vd[i] = add_vertex(built);
+    put(vpm, vd[i], Point(out.points[i].x(), out.points[i].y(), out.points[i].z()));
+  }
+  for(const auto& f : out.faces) {
+    std::array<vertex_descriptor, 3> t = {{vd[f[0]], vd[f[1]], vd[f[2]]}};
+    if(CGAL::Euler::add_face(t, built) == boost::graph_traits<OutputMesh>::null_face())
+      throw Convergence_failure("remesh(): the output is not a valid 2-manifold (add_face refused a triangle)", 0);
+  }
+  out_mesh = built;
+}
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_REMESH_PIPELINE_STEPS_H

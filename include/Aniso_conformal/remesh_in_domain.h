@@ -1,0 +1,113 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_REMESH_IN_DOMAIN_H
+#define ANISO_CONFORMAL_REMESH_IN_DOMAIN_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/Remeshing_result.h>
+#include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/parameter_defaults.h>
+#include <Aniso_conformal/internal/remesh/pipeline_steps.h>
+#include <Aniso_conformal/internal/visitor_helper.h>
+#include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/parameters.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
+
+#include <string>
+#include <vector>
+
+/// \file remesh_in_domain.h
+/// The pipeline of `remesh()` in one parametric domain, chosen at compile time: includes no domain, so a
+/// program that knows its topology compiles only the domain it uses.
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalMain
+ * remeshes `surface` as `remesh()` does, through the parametric domain `Domain` (a model of
+ * `ParametricDomain`: `Planar_domain`, `Spherical_domain`, `Flat_torus_domain`, `Hyperbolic_domain`)
+ * instead of the one the topology selects: the six stages of Zhong et al.\ 2014 (metric, edge lengths,
+ * conformal embedding, weighted CVT with density `cf^2`, Delaunay dual mapped back, quality in the
+ * metric), with `Domain` supplying stage 3, the domain traits of stages 4 and 5 and its diagnostics.
+ * `remesh()` is this function behind one switch on the topology; call it directly to compile only the
+ * domain you need (each domain brings its own CGAL triangulations, which dominate the build time).
+ *
+ * \tparam Domain a model of `ParametricDomain`
+ * \tparam AnisotropicMetric a model of `AnisotropicMetric`
+ * \param surface the input (never modified)
+ * \param metric the metric
+ * \param result receives the diagnostics (`Remeshing_result::domain_diagnostics` from `Domain`)
+ * \param np the named parameters of `remesh()` (`parametric_domain` is ignored: `Domain` is the domain)
+ * \returns the output mesh as arrays
+ * \throws Invalid_input if `number_of_vertices` is missing or below the minimum of the domain and topology,
+ *         if `Domain` does not fit the topology (`Domain::fits()`), or if the metric is unusable
+ * \throws Remeshing_failure (or its `Convergence_failure`) if a stage cannot handle this valid input; the
+ *         output is never returned with an inverted triangle or a wrong topology
+ * \throws Cancelled if the visitor asked to stop
+ */
+template <typename Domain, typename AnisotropicMetric, typename NamedParameters = parameters::Default_named_parameters>
+Remeshed_surface remesh_in_domain(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                                  const NamedParameters& np = parameters::default_values())
+{
+  const std::size_t n = internal::number_of_vertices(np);
+  typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
+  if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
+  if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
+  if(!Domain::fits(surface))
+    throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
+                        surface.topology_description() + " (the " + domain_name(Domain::kind) + " domain takes " +
+                        Domain::topology() + ")");
+  Domain::check_number_of_vertices(surface, n);
+  result = Remeshing_result();
+  result.domain = Domain::kind;
+  result.input_vertices = surface.number_of_vertices();
+  result.input_faces = surface.number_of_faces();
+
+  // 1. metric, 2. edge lengths
+  Intrinsic_triangulation itri = internal::metric_and_edge_lengths(surface, metric, np, vis, result);
+  if(n > itri.number_of_vertices())
+    throw Remeshing_failure("remesh(): " + std::to_string(n) + " output vertices exceed what the background triangulation can carry (" +
+                            std::to_string(itri.number_of_vertices()) + " vertices); refine the input");
+
+  // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
+  internal::Stage_timer t3(vis, Stage::EMBEDDING);
+  const typename Domain::Embedding emb = Domain::embed(itri, np);
+  internal::record_embedding(emb, result);
+  result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
+  typename Domain::Traits traits = Domain::make_traits(itri, emb, internal::number_of_threads(np));
+  std::vector<typename Domain::Traits::Point> sites = traits.initial_sites(n, internal::random_seed(np));
+  const Remeshed_surface out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+  result.domain_diagnostics = Domain::diagnostics(emb, traits);
+
+  // 6. quality in the metric, orientation against the input, topology and distance to the input
+  internal::measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result);
+  return out;
+}
+
+/*!
+ * \ingroup PkgAnisoConformalMain
+ * remeshes the triangle mesh `tmesh` (any model of `FaceListGraph`) into `out_mesh` (a model of
+ * `MutableFaceGraph`) through the parametric domain `Domain`, as the overload on `Input_surface` does;
+ * `out_mesh` is cleared and written only on success (strong guarantee), and `tmesh` is never modified.
+ * \returns the diagnostics (`Remeshing_result`)
+ */
+template <typename Domain, typename TriangleMesh, typename AnisotropicMetric, typename OutputMesh,
+          typename NamedParameters = parameters::Default_named_parameters>
+Remeshing_result remesh_in_domain(const TriangleMesh& tmesh, const AnisotropicMetric& metric, OutputMesh& out_mesh,
+                                  const NamedParameters& np = parameters::default_values())
+{
+  const Input_surface surface = Input_surface::from_mesh(tmesh, np);
+  Remeshing_result result;
+  internal::copy_to_face_graph(remesh_in_domain<Domain>(surface, metric, result, np), out_mesh);
+  return result;
+}
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_REMESH_IN_DOMAIN_H
