@@ -3,9 +3,22 @@
 # and runs the whole Boost.Test suite through ctest.
 #   ./test.sh --sanitize   builds the tests and the tool with AddressSanitizer and
 #                          UndefinedBehaviorSanitizer in build-sanitize/ and runs the suite there
+#   ./test.sh --sanitize-subset   the same for test_io and test_cli only (CI runs it after the full suite)
 set -euo pipefail
 cd "$(dirname "$0")"
 ./scripts/install_dependencies.sh
+if [[ "${1:-}" == "--sanitize-subset" ]]; then
+  # what CI adds to the full run: the readers of untrusted bytes and the command line (test_io, test_cli
+  # and the tool they run) under AddressSanitizer and UndefinedBehaviorSanitizer
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DANISO_CONFORMAL_SANITIZE=ON \
+        -DANISO_CONFORMAL_BUILD_TESTS=ON -DANISO_CONFORMAL_BUILD_TOOLS=ON \
+        -DANISO_CONFORMAL_BUILD_EXAMPLES=OFF -DANISO_CONFORMAL_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build build-sanitize -j"$(nproc)" --target aniso_remesh test_io test_cli
+  cd build-sanitize
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --output-on-failure -j1 -R '^(test_io|test_cli)$'
+  exit 0
+fi
 if [[ "${1:-}" == "--sanitize" ]]; then
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DANISO_CONFORMAL_SANITIZE=ON \
         -DANISO_CONFORMAL_BUILD_TESTS=ON -DANISO_CONFORMAL_BUILD_TOOLS=ON \

@@ -58,7 +58,9 @@ void check_domain_concept(const Aniso_conformal::Input_surface& surface, const A
   std::vector<Point> sites = traits.initial_sites(n, 3u);
   BOOST_TEST(sites.size() == n);
   BOOST_TEST(traits.number_of_fixed_sites() <= n);
-  for(const Point& p : sites) BOOST_TEST(traits.contains(p), name << ": an initial site lies outside the domain");
+  // the free sites lie in the domain (the fixed ones lie on its boundary, where contains() may say either)
+  for(std::size_t i = traits.number_of_fixed_sites(); i < n; ++i)
+    BOOST_TEST(traits.contains(sites[i]), name << ": initial site " << i << " lies outside the domain");
   Traits again = Domain::make_traits(itri, emb, 2);
   const std::vector<Point> same = again.initial_sites(n, 3u);
   bool identical = same.size() == sites.size();

@@ -123,8 +123,18 @@ std::vector<Eigen::Matrix3d> random_tensor_field(std::mt19937& rng, const AC::In
 }
 
 struct Outcomes {
-  int ok = 0, invalid_input = 0, convergence_failure = 0, other = 0;
+  int ok = 0, invalid_input = 0, remeshing_failure = 0, other = 0;
+  std::vector<std::string> undocumented;  // failure messages that name no stage of the pipeline
 };
+
+// A Remeshing_failure must say which stage gave up: its message starts with one of the stages' names.
+bool names_a_stage(const std::string& m)
+{
+  for(const char* stage : {"edge-length adjustment", "conformal embedding", "spherical embedding", "flat torus embedding",
+                           "hyperbolic embedding", "flat torus:", "hyperbolic domain", "dual mesh", "remesh(): the output"})
+    if(m.rfind(stage, 0) == 0) return true;
+  return false;
+}
 
 // bitwise equality of two arrays of trivially copyable values
 template <typename T>
@@ -168,13 +178,11 @@ void check_valid_output(const AC::Input_surface& s, const AC::Remeshed_surface& 
   BOOST_TEST(off == 0u, what << ": " << off << " vertices off the input (worst distance " << worst << ")");
 }
 
-// One remesh() trial on a copy-checked input: counts the outcome, fails on anything undocumented.
+// One remesh() trial: counts the outcome, fails on anything undocumented (another exception type, a
+// Remeshing_failure that names no stage, Invalid_input on a valid surface and metric).
 void run_trial(const AC::Input_surface& s, const std::vector<Eigen::Matrix3d>& tensors, std::size_t n, unsigned seed,
                const std::string& what, Outcomes& count)
 {
-  const Points points_before = s.points();
-  const Faces faces_before = s.faces();
-  const std::vector<Eigen::Matrix3d> tensors_before = tensors;
   const AC::Tensor_field_metric metric(tensors);
   AC::Remeshing_result r;
   const auto t0 = std::chrono::steady_clock::now();
@@ -188,9 +196,10 @@ void run_trial(const AC::Input_surface& s, const std::vector<Eigen::Matrix3d>& t
   } catch(const AC::Invalid_input& e) {
     ++count.invalid_input;
     outcome = std::string("Invalid_input: ") + e.what();
-  } catch(const AC::Convergence_failure& e) {
-    ++count.convergence_failure;
-    outcome = std::string("Convergence_failure: ") + e.what();
+  } catch(const AC::Remeshing_failure& e) {
+    ++count.remeshing_failure;
+    outcome = std::string("Remeshing_failure: ") + e.what();
+    if(!names_a_stage(e.what())) count.undocumented.push_back(e.what());
   } catch(const std::exception& e) {
     ++count.other;
     BOOST_ERROR(what << ": undocumented exception: " << e.what());
@@ -200,9 +209,6 @@ void run_trial(const AC::Input_surface& s, const std::vector<Eigen::Matrix3d>& t
   }
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   BOOST_TEST_MESSAGE(what << " (" << sec << " s): " << outcome);
-  BOOST_TEST(same_bits(s.points(), points_before), what << ": the input points changed");
-  BOOST_TEST(same_bits(s.faces(), faces_before), what << ": the input faces changed");
-  BOOST_TEST(same_bits(metric.tensors(), tensors_before), what << ": the tensors changed");
 }
 
 std::string describe(const std::string& mesh, std::size_t nv, double stretch, double scale, std::size_t n, unsigned seed)
@@ -219,12 +225,15 @@ void random_metric_parameters(std::mt19937& rng, int trial, double& stretch, dou
   scale = trial % 2 ? 1000.0 : 1.0;
 }
 
+// Every trial's input is valid (a manifold disk or closed surface, an SPD metric, a vertex count the
+// topology allows), so none may be refused as bad input, and every failure must name its stage.
 void report(const std::string& name, const Outcomes& c, int trials)
 {
   BOOST_TEST_MESSAGE(name << ": " << trials << " trials, " << c.ok << " valid outputs, " << c.invalid_input << " Invalid_input, "
-                          << c.convergence_failure << " Convergence_failure, " << c.other << " other");
+                          << c.remeshing_failure << " Remeshing_failure, " << c.other << " other");
   BOOST_TEST(c.other == 0);
-  BOOST_TEST(c.ok + c.invalid_input + c.convergence_failure + c.other == trials);
+  BOOST_TEST(c.invalid_input == 0, name << ": a valid input was refused as bad input");
+  for(const std::string& m : c.undocumented) BOOST_ERROR(name << ": a failure that names no stage: " << m);
 }
 
 Mesh to_surface_mesh(const AC::Input_surface& s)
@@ -402,7 +411,10 @@ BOOST_AUTO_TEST_CASE(random_metrics_on_genus_two_and_three_remesh_or_throw_a_doc
   }
   report("closed genus 2 and 3, mild metrics", mild, trials / 3);
   report("closed genus 2 and 3, stretch up to 100 or scale 1000x", strong, 2 * trials / 3);
+  // measured with these seeds: 4 of 4 mild trials remesh; the 8 strong ones (100 to 400 sites for a
+  // stretch up to 100 or a 1000x scale range) end in a Remeshing_failure naming its stage, none remeshes
   BOOST_TEST(mild.ok >= 3);
+  BOOST_TEST(strong.ok + strong.remeshing_failure == 2 * trials / 3);
 }
 
 // ------------------------------------------------------------------ BGL entry point guarantee
@@ -597,18 +609,13 @@ BOOST_AUTO_TEST_CASE(closed_genus_two_goes_to_the_hyperbolic_disk)
   BOOST_REQUIRE(s.boundary_loops().empty());
   BOOST_REQUIRE(s.genus() == 2);
   AC::Remeshing_result r;
-  const Points before = s.points();
   // below the smallest genus-2 triangulation: refused with the reason
   BOOST_TEST(contains(invalid_input_message([&] { AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(8))); }),
                       "genus 2 needs at least 10"));
-  // otherwise a valid genus-2 output or a documented exception, never a crash
-  try {
-    const AC::Remeshed_surface out = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(20)));
-    BOOST_TEST(out.points.size() == 20u);
-    BOOST_TEST(out.faces.size() == 44u);
-    BOOST_TEST((r.domain == AC::Parametric_domain::HYPERBOLIC));
-  } catch(const AC::Error& e) {
-    BOOST_TEST_MESSAGE("voxel genus 2: " << e.what());
-  }
-  BOOST_TEST(same_bits(s.points(), before));
+  // otherwise a valid genus-2 output (2 n + 4 (g - 1) triangles) through the hyperbolic disk
+  const AC::Remeshed_surface out = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(20)));
+  BOOST_TEST(out.points.size() == 20u);
+  BOOST_TEST(out.faces.size() == 44u);
+  BOOST_TEST((r.domain == AC::Parametric_domain::HYPERBOLIC));
+  BOOST_TEST(r.inverted_triangles == 0u);
 }

@@ -1,8 +1,11 @@
 // Copyright (c) 2026 Aniso_conformal developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Integration tests of remesh(): the paper's planar figures against the quality bar, the BGL entry point
-// on Surface_mesh and Polyhedron_3, determinism, disk surfaces, and every error path of the entry point.
+// Integration tests of the pipeline in the plane, remesh_in_domain<Planar_domain>() (what remesh() runs
+// for a disk): the paper's planar figures against the quality bar, the BGL entry point on Surface_mesh
+// and Polyhedron_3, determinism, disk surfaces, every error path of the entry point, and the
+// ParametricDomain / ParametricDomainTraits concept checks of the planar models. This module compiles
+// the plane only; test_properties covers remesh()'s choice of the domain.
 
 #define BOOST_TEST_MODULE Aniso_conformal_remesh
 #include <boost/test/unit_test.hpp>
@@ -12,23 +15,33 @@
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/make_square_background.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/Planar_domain.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include "domain_concept_checks.h"
 #include "mesh_checks.h"
 
 #include <cmath>
 #include <limits>
 #include <set>
+#include <utility>
 
 namespace AC = Aniso_conformal;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 
 namespace {
+
+// the pipeline in the plane: what remesh() runs for a disk
+template <typename... Args>
+auto remesh_plane(Args&&... args) -> decltype(AC::remesh_in_domain<AC::Planar_domain>(std::forward<Args>(args)...))
+{
+  return AC::remesh_in_domain<AC::Planar_domain>(std::forward<Args>(args)...);
+}
 
 struct Planar_checks {
   double area = 0;
@@ -56,7 +69,7 @@ template <typename Metric>
 AC::Remeshed_surface remesh_square(const Metric& metric, std::size_t n, AC::Remeshing_result& r, unsigned seed = 0)
 {
   const AC::Input_surface bg = AC::make_square_background(metric, n);
-  return AC::remesh(bg, metric, r, AC::parameters::number_of_vertices(n).random_seed(seed));
+  return remesh_plane(bg, metric, r, AC::parameters::number_of_vertices(n).random_seed(seed));
 }
 
 template <typename Mesh>
@@ -139,7 +152,7 @@ BOOST_AUTO_TEST_CASE_TEMPLATE(bgl_entry_point_on_mesh_types, Mesh, Mesh_types)
   fill_mesh(bg, in);
   std::vector<K::Point_3> before;
   for(auto v : vertices(in)) before.push_back(get(CGAL::vertex_point, in, v));
-  const AC::Remeshing_result r = AC::remesh(in, metric, out, AC::parameters::number_of_vertices(std::size_t(300)));
+  const AC::Remeshing_result r = remesh_plane(in, metric, out, AC::parameters::number_of_vertices(std::size_t(300)));
   BOOST_TEST(num_vertices(out) == 300u);
   BOOST_TEST(CGAL::is_valid_polygon_mesh(out));
   BOOST_TEST(CGAL::is_triangle_mesh(out));
@@ -159,7 +172,7 @@ BOOST_AUTO_TEST_CASE_TEMPLATE(cancelling_visitor_leaves_output_unchanged, Mesh, 
   fill_mesh(bg, out);
   const std::size_t nv = num_vertices(out);
   Cancel_after cancel;
-  BOOST_CHECK_THROW(AC::remesh(in, AC::Uniform_metric(), out,
+  BOOST_CHECK_THROW(remesh_plane(in, AC::Uniform_metric(), out,
                                AC::parameters::number_of_vertices(std::size_t(100)).visitor(std::ref(cancel))),
                     AC::Cancelled);
   BOOST_TEST(num_vertices(out) == nv);
@@ -185,7 +198,7 @@ BOOST_AUTO_TEST_CASE(disk_surface_keeps_boundary_and_corners)
     }
   const AC::Input_surface s(pts, faces);
   AC::Remeshing_result r;
-  const auto out = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(200)));
+  const auto out = remesh_plane(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(200)));
   BOOST_TEST(out.points.size() == 200u);
   BOOST_TEST(r.corners == 4u);
   BOOST_TEST(r.inverted_triangles == 0u);
@@ -215,39 +228,47 @@ BOOST_AUTO_TEST_CASE(errors_name_the_problem)
     return "(no exception)";
   };
   // vertex counts
-  BOOST_TEST(message_of([&] { AC::remesh(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(2))); })
+  BOOST_TEST(message_of([&] { remesh_plane(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(2))); })
                .find("at least 3") != std::string::npos);
-  BOOST_TEST(message_of([&] { AC::remesh(square, AC::Uniform_metric(), r, AC::parameters::random_seed(1u)); })
+  BOOST_TEST(message_of([&] { remesh_plane(square, AC::Uniform_metric(), r, AC::parameters::random_seed(1u)); })
                .find("number of output vertices") != std::string::npos);
   BOOST_TEST(message_of([&] {
-               AC::remesh(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000000)));
+               remesh_plane(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000000)));
              }).find("exceed") != std::string::npos);
   // a valid input that this version cannot remesh is not bad input
-  BOOST_CHECK_THROW(AC::remesh(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000000))),
+  BOOST_CHECK_THROW(remesh_plane(square, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000000))),
                     AC::Remeshing_failure);
   // a closed surface (octahedron) does not fit the plane
   const AC::Input_surface octa({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
                                {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}}, {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}});
   BOOST_TEST(message_of([&] {
-               AC::remesh(octa, AC::Uniform_metric(), r,
+               remesh_plane(octa, AC::Uniform_metric(), r,
                           AC::parameters::number_of_vertices(std::size_t(4)).parametric_domain(AC::Parametric_domain::PLANE));
              }).find("closed surface of genus 0") != std::string::npos);
   // metric problems name the vertex
   std::vector<Eigen::Matrix3d> tensors(square.number_of_vertices(), Eigen::Matrix3d::Identity());
   tensors[5](0, 0) = std::numeric_limits<double>::quiet_NaN();
   BOOST_TEST(message_of([&] {
-               AC::remesh(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
+               remesh_plane(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
              }).find("vertex 5") != std::string::npos);
   tensors[5] = Eigen::Matrix3d::Identity();
   tensors[7] = Eigen::Vector3d(1, -1, 0).asDiagonal();
   BOOST_TEST(message_of([&] {
-               AC::remesh(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
+               remesh_plane(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
              }).find("vertex 7: the tensor is not positive definite") != std::string::npos);
   tensors.pop_back();
   tensors[7] = Eigen::Matrix3d::Identity();
   BOOST_TEST(message_of([&] {
-               AC::remesh(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
+               remesh_plane(square, AC::Tensor_field_metric(tensors), r, AC::parameters::number_of_vertices(std::size_t(20)));
              }).find("tensor field has") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(planar_domain_models_its_concepts)
+{
+  const AC::Input_surface square = AC::make_square_background(AC::Uniform_metric(), 300);
+  const AC::Input_surface octa({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                               {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}}, {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}});
+  test::check_domain_concept<AC::Planar_domain>(square, octa, 200);
 }
 
 BOOST_AUTO_TEST_CASE(lloyd_also_works)
@@ -255,7 +276,7 @@ BOOST_AUTO_TEST_CASE(lloyd_also_works)
   const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
   const AC::Input_surface bg = AC::make_square_background(metric, 300);
   AC::Remeshing_result r;
-  const auto out = AC::remesh(bg, metric, r,
+  const auto out = remesh_plane(bg, metric, r,
                               AC::parameters::number_of_vertices(std::size_t(300)).cvt_method(AC::Cvt_method::LLOYD));
   BOOST_TEST(out.points.size() == 300u);
   BOOST_TEST(r.inverted_triangles == 0u);

@@ -9,6 +9,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/domains/domain_policy_base.h>
 #include <Aniso_conformal/flat_torus_embedding.h>
 #include <Aniso_conformal/parameters.h>
 
@@ -28,32 +29,23 @@ namespace Aniso_conformal {
  *
  * \cgalModels `ParametricDomain`
  */
-struct Flat_torus_domain {
-  typedef Flat_torus_embedding Embedding;           ///< result of stage 3
-  typedef Euclidean_periodic_domain_traits Traits;  ///< the domain of stages 4 and 5
+struct Flat_torus_domain : internal::Domain_policy_base<Flat_torus_embedding, Euclidean_periodic_domain_traits> {
   static constexpr Parametric_domain kind = Parametric_domain::FLAT_TORUS;  ///< its tag
 
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces of genus 1"; }
   /// `true` for a closed surface of genus 1
-  static bool fits(const Input_surface& s) { return s.boundary_loops().empty() && s.genus() == 1; }
+  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 1, 1); }
   /// \throws Invalid_input below 7 vertices (the smallest torus triangulation, Moebius' torus)
-  static void check_number_of_vertices(const Input_surface&, std::size_t n)
+  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
   {
-    if(n < 7)
-      throw Invalid_input("remesh(): a closed surface of genus 1 needs at least 7 output vertices (the smallest torus "
-                          "triangulation), " + std::to_string(n) + " were requested");
+    require_vertices(s, n, 7, "the smallest torus triangulation");
   }
   /// stage 3: `flat_torus_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)
   {
     return flat_torus_embedding(itri, np);
-  }
-  /// the domain traits of stages 4 and 5, `threads` workers (0: all cores)
-  static Traits make_traits(const Intrinsic_triangulation& itri, const Embedding& emb, unsigned threads)
-  {
-    return Traits(itri, emb, threads);
   }
   /// the reduced lattice basis (by rows) and the layout's error
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits&)
@@ -67,12 +59,6 @@ struct Flat_torus_domain {
                   emb.lattice[0].y(), emb.lattice[1].x(), emb.lattice[1].y(), emb.lattice_error);
     d.summary = text;
     return d;
-  }
-  /// what an inverted output triangle most likely means here
-  static const char* inverted_triangles_hint()
-  {
-    return "the output is too coarse for thin or strongly curved parts of the surface, or the metric too strong for the "
-           "background (more vertices or a finer input may help)";
   }
 };
 

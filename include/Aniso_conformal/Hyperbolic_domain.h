@@ -9,12 +9,14 @@
 #include <Aniso_conformal/Hyperbolic_klein_domain_traits.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/domains/domain_policy_base.h>
 #include <Aniso_conformal/hyperbolic_embedding.h>
 #include <Aniso_conformal/parameters.h>
 
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 /// \file Hyperbolic_domain.h
@@ -30,15 +32,13 @@ namespace Aniso_conformal {
  *
  * \cgalModels `ParametricDomain`
  */
-struct Hyperbolic_domain {
-  typedef Hyperbolic_embedding Embedding;         ///< result of stage 3
-  typedef Hyperbolic_klein_domain_traits Traits;  ///< the domain of stages 4 and 5
+struct Hyperbolic_domain : internal::Domain_policy_base<Hyperbolic_embedding, Hyperbolic_klein_domain_traits> {
   static constexpr Parametric_domain kind = Parametric_domain::HYPERBOLIC;  ///< its tag
 
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces of genus 2 or more"; }
   /// `true` for a closed surface of genus 2 or more
-  static bool fits(const Input_surface& s) { return s.boundary_loops().empty() && s.genus() >= 2; }
+  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 2, std::numeric_limits<int>::max()); }
   /*!
    * the fewest vertices of a triangulation of the closed surface of genus `g >= 1` (Ringel and
    * Jungerman: Heawood's bound `ceil((7 + sqrt(1 + 48 g)) / 2)`, except 10 for genus 2)
@@ -51,22 +51,13 @@ struct Hyperbolic_domain {
   /// \throws Invalid_input below `minimum_number_of_vertices(genus)`
   static void check_number_of_vertices(const Input_surface& s, std::size_t n)
   {
-    const std::size_t least = minimum_number_of_vertices(s.genus());
-    if(n < least)
-      throw Invalid_input("remesh(): a closed surface of genus " + std::to_string(s.genus()) + " needs at least " +
-                          std::to_string(least) + " output vertices (the smallest triangulation of that genus), " +
-                          std::to_string(n) + " were requested");
+    require_vertices(s, n, minimum_number_of_vertices(s.genus()), "the smallest triangulation of that genus");
   }
   /// stage 3: `hyperbolic_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)
   {
     return hyperbolic_embedding(itri, np);
-  }
-  /// the domain traits of stages 4 and 5, `threads` workers (0: all cores)
-  static Traits make_traits(const Intrinsic_triangulation& itri, const Embedding& emb, unsigned threads)
-  {
-    return Traits(itri, emb, threads);
   }
   /// the relations' error and the tiles reached (called after the CVT, which grows the band)
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits& traits)
@@ -80,12 +71,6 @@ struct Hyperbolic_domain {
                   traits.number_of_group_elements());
     d.summary = text;
     return d;
-  }
-  /// what an inverted output triangle most likely means here
-  static const char* inverted_triangles_hint()
-  {
-    return "the output is too coarse for thin or strongly curved parts of the surface, or the metric too strong for the "
-           "background (more vertices or a finer input may help)";
   }
 };
 

@@ -10,6 +10,7 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Planar_domain_traits.h>
 #include <Aniso_conformal/conformal_embedding.h>
+#include <Aniso_conformal/internal/domains/domain_policy_base.h>
 #include <Aniso_conformal/parameters.h>
 
 #include <cstddef>
@@ -28,9 +29,7 @@ namespace Aniso_conformal {
  *
  * \cgalModels `ParametricDomain`
  */
-struct Planar_domain {
-  typedef Planar_embedding Embedding;   ///< result of stage 3
-  typedef Planar_domain_traits Traits;  ///< the domain of stages 4 and 5
+struct Planar_domain : internal::Domain_policy_base<Planar_embedding, Planar_domain_traits> {
   static constexpr Parametric_domain kind = Parametric_domain::PLANE;  ///< its tag
 
   /// the topologies it takes, in words
@@ -41,20 +40,12 @@ struct Planar_domain {
    * \throws Invalid_input below 3 vertices (a triangle); the corners, which must all be output vertices,
    *         are counted by `Planar_domain_traits::initial_sites()`, which checks them
    */
-  static void check_number_of_vertices(const Input_surface&, std::size_t n)
-  {
-    if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
-  }
+  static void check_number_of_vertices(const Input_surface& s, std::size_t n) { require_vertices(s, n, 3, "a triangle"); }
   /// stage 3: `conformal_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)
   {
     return conformal_embedding(itri, np);
-  }
-  /// the domain traits of stages 4 and 5, `threads` workers (0: all cores)
-  static Traits make_traits(const Intrinsic_triangulation& itri, const Embedding& emb, unsigned threads)
-  {
-    return Traits(itri, emb, threads);
   }
   /// nothing beyond the figures every domain reports
   static Domain_diagnostics diagnostics(const Embedding&, const Traits&) { return Domain_diagnostics(); }

@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/domains/domain_policy_base.h>
 #include <Aniso_conformal/Spherical_domain_traits.h>
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/spherical_embedding.h>
@@ -28,32 +29,23 @@ namespace Aniso_conformal {
  *
  * \cgalModels `ParametricDomain`
  */
-struct Spherical_domain {
-  typedef Spherical_embedding Embedding;   ///< result of stage 3
-  typedef Spherical_domain_traits Traits;  ///< the domain of stages 4 and 5
+struct Spherical_domain : internal::Domain_policy_base<Spherical_embedding, Spherical_domain_traits> {
   static constexpr Parametric_domain kind = Parametric_domain::SPHERE;  ///< its tag
 
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces of genus 0"; }
   /// `true` for a closed surface of genus 0
-  static bool fits(const Input_surface& s) { return s.boundary_loops().empty() && s.genus() == 0; }
+  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 0, 0); }
   /// \throws Invalid_input below 4 vertices (the tetrahedron)
-  static void check_number_of_vertices(const Input_surface&, std::size_t n)
+  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
   {
-    if(n < 4)
-      throw Invalid_input("remesh(): a closed surface of genus 0 needs at least 4 output vertices (the tetrahedron), " +
-                          std::to_string(n) + " were requested");
+    require_vertices(s, n, 4, "the tetrahedron");
   }
   /// stage 3: `spherical_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)
   {
     return spherical_embedding(itri, np);
-  }
-  /// the domain traits of stages 4 and 5, `threads` workers (0: all cores)
-  static Traits make_traits(const Intrinsic_triangulation& itri, const Embedding& emb, unsigned threads)
-  {
-    return Traits(itri, emb, threads);
   }
   /// the angle distortion of the map (degrees)
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits&)
@@ -67,12 +59,6 @@ struct Spherical_domain {
                   emb.angle_distortion_max);
     d.summary = text;
     return d;
-  }
-  /// what an inverted output triangle most likely means here
-  static const char* inverted_triangles_hint()
-  {
-    return "the output is too coarse for thin or strongly curved parts of the surface, or the metric too strong for the "
-           "background (more vertices or a finer input may help)";
   }
 };
 

@@ -132,10 +132,7 @@ Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
                                           const NamedParameters& np = parameters::default_values())
 {
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
-  const int chi = internal::closed_surface_euler_characteristic(itri, "flat_torus_embedding()", "the flat torus");
-  if(chi != 0)
-    throw Invalid_input("flat_torus_embedding(): the surface has genus " + std::to_string((2 - chi) / 2) +
-                        "; the flat torus needs genus 1");
+  internal::require_closed_surface(itri, "flat_torus_embedding()", "the flat torus", [](int g) { return g == 1; }, "genus 1");
 
   Flat_torus_embedding emb;
   std::vector<char> fixed(std::size_t(nv), 0);

@@ -171,12 +171,9 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
 {
   const double pi = 3.14159265358979323846;
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
-  const int chi = internal::closed_surface_euler_characteristic(itri, "hyperbolic_embedding()", "the hyperbolic disk");
-  if(chi >= 0 || chi % 2 != 0)
-    throw Invalid_input("hyperbolic_embedding(): the surface has Euler characteristic " + std::to_string(chi) +
-                        "; the hyperbolic disk needs a closed surface of genus 2 or more");
   Hyperbolic_embedding emb;
-  emb.genus = (2 - chi) / 2;
+  emb.genus = internal::require_closed_surface(itri, "hyperbolic_embedding()", "the hyperbolic disk", [](int g) { return g >= 2; },
+                                               "genus 2 or more");
 
   // ---- 1. the hyperbolic metric; the global scale s makes the input's Euclidean area equal to the
   // hyperbolic area 4 pi (g - 1), so that u = 0 is a good start

@@ -121,10 +121,7 @@ template <typename NamedParameters = parameters::Default_named_parameters>
 Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const NamedParameters& np = parameters::default_values())
 {
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
-  const int chi = internal::closed_surface_euler_characteristic(itri, "spherical_embedding()", "the sphere");
-  if(chi != 2)
-    throw Invalid_input("spherical_embedding(): the surface has genus " + std::to_string((2 - chi) / 2) +
-                        "; the sphere needs a closed surface of genus 0");
+  internal::require_closed_surface(itri, "spherical_embedding()", "the sphere", [](int g) { return g == 0; }, "genus 0");
 
   // ---- 1. intrinsic Delaunay flips on the whole surface (the solver's first pass, with every vertex
   // fixed: no Newton step), so that some star is Delaunay with a margin; they keep the metric

@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_INTERNAL_CONFORMAL_EUCLIDEAN_GEOMETRY_H
 
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/conformal/flat_triangle.h>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -35,11 +36,7 @@ inline double heron_area(double a, double b, double c)
 inline std::array<double, 3> corner_angles(const std::array<double, 3>& l, bool& degenerate)
 {
   std::array<double, 3> angle;
-  degenerate = false;
-  for(int k = 0; k < 3; ++k) {
-    const double opp = l[(k + 1) % 3], a = l[k], b = l[(k + 2) % 3];
-    if(opp >= a + b) { degenerate = true; angle = {{0, 0, 0}}; angle[k] = 3.14159265358979323846; return angle; }
-  }
+  if((degenerate = flat_triangle_angles(l, angle))) return angle;
   for(int k = 0; k < 3; ++k) {
     const double opp = l[(k + 1) % 3], a = l[k], b = l[(k + 2) % 3];
     double c = (a * a + b * b - opp * opp) / (2 * a * b);

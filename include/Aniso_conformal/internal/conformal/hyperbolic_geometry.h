@@ -4,6 +4,8 @@
 #ifndef ANISO_CONFORMAL_INTERNAL_CONFORMAL_HYPERBOLIC_GEOMETRY_H
 #define ANISO_CONFORMAL_INTERNAL_CONFORMAL_HYPERBOLIC_GEOMETRY_H
 
+#include <Aniso_conformal/internal/conformal/flat_triangle.h>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -18,6 +20,7 @@
 
 namespace Aniso_conformal {
 namespace internal {
+
 
 inline double minkowski_dot(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 {
@@ -104,11 +107,7 @@ inline Eigen::Vector3d hyperbolic_third_point(const Eigen::Vector3d& p, const Ei
 inline std::array<double, 3> hyperbolic_corner_angles(const std::array<double, 3>& l, bool& degenerate)
 {
   std::array<double, 3> angle;
-  degenerate = false;
-  for(int k = 0; k < 3; ++k) {
-    const double opp = l[(k + 1) % 3], a = l[k], b = l[(k + 2) % 3];
-    if(opp >= a + b) { degenerate = true; angle = {{0, 0, 0}}; angle[k] = 3.14159265358979323846; return angle; }
-  }
+  if((degenerate = flat_triangle_angles(l, angle))) return angle;
   for(int k = 0; k < 3; ++k) {
     const double a = l[(k + 1) % 3], b = l[k], c = l[(k + 2) % 3];  // a opposite the corner
     const double s2 = std::sinh(0.5 * (a - b + c)) * std::sinh(0.5 * (a + b - c));

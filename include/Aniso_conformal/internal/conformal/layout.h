@@ -113,16 +113,24 @@ inline std::vector<double> vertex_conformal_factors(const Intrinsic_triangulatio
 }
 
 /*
- * The Euler characteristic of `itri`, which must be a closed surface: Invalid_input naming `who` and
- * `domain` ("the sphere") if it has a boundary.
+ * The genus of `itri`, which must be a closed surface whose genus `accepts`: Invalid_input naming `who`
+ * and `domain` ("the sphere") if it has a boundary, or if its genus is not accepted (`needs` says what
+ * is, "genus 0").
  */
-inline int closed_surface_euler_characteristic(const Intrinsic_triangulation& itri, const std::string& who, const std::string& domain)
+template <typename Accepts>
+int require_closed_surface(const Intrinsic_triangulation& itri, const std::string& who, const std::string& domain,
+                           Accepts accepts, const std::string& needs)
 {
   const int nh = int(itri.number_of_halfedges());
   for(int h = 0; h < nh; ++h)
     if(itri.is_boundary_edge(h))
       throw Invalid_input(who + ": the triangulation has a boundary; " + domain + " needs a closed surface");
-  return int(itri.number_of_vertices()) - nh / 2 + int(itri.number_of_faces());
+  const int chi = int(itri.number_of_vertices()) - nh / 2 + int(itri.number_of_faces());
+  if(chi % 2 != 0 || !accepts((2 - chi) / 2))
+    throw Invalid_input(who + ": the surface has Euler characteristic " + std::to_string(chi) +
+                        (chi % 2 == 0 ? " (genus " + std::to_string((2 - chi) / 2) + ")" : std::string()) + "; " + domain +
+                        " needs a closed surface of " + needs);
+  return (2 - chi) / 2;
 }
 
 } // namespace internal
