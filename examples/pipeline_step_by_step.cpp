@@ -36,10 +36,7 @@ int main(int argc, char** argv)
 
     // 4. weighted CVT with density cf^2, boundary sites fixed between the corners
     AC::Planar_domain_traits domain(itri, emb);
-    double adjusted_area = 0;
-    for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
-      adjusted_area += AC::internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
-    std::vector<AC::Planar_domain_traits::Point> sites = domain.initial_sites(n, 0, adjusted_area);
+    std::vector<AC::Planar_domain_traits::Point> sites = domain.initial_sites(n, 0);
     const AC::Cvt_report cvt = AC::weighted_centroidal_Voronoi_tessellation(
         domain, sites, domain.number_of_fixed_sites(), AC::parameters::number_of_iterations(100u));
     std::cout << "CVT: energy " << cvt.energy.front() << " -> " << cvt.energy.back() << " in " << cvt.iterations

@@ -210,7 +210,7 @@ BOOST_AUTO_TEST_CASE(klein_power_diagram_integrals_and_cvt)
   const AC::Input_surface s = eight_1k();
   Background b(s);
   const AC::Hyperbolic_embedding emb = AC::hyperbolic_embedding(b.itri);
-  const AC::Hyperbolic_klein_domain_traits d(b.itri, emb, 2);
+  AC::Hyperbolic_klein_domain_traits d(b.itri, emb, 2);
   BOOST_TEST(d.genus() == 2);
   std::vector<AC::Hyperbolic_klein_domain_traits::Point> x = d.initial_sites(200, 7);
   BOOST_TEST(x.size() == 200u);

@@ -830,7 +830,7 @@ BOOST_AUTO_TEST_CASE(cells_match_a_brute_force_quadrature)
 BOOST_AUTO_TEST_CASE(gradient_matches_finite_differences_along_tangents)
 {
   const Sphere_background bg(3, &graded);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const std::vector<Point> sites = d.initial_sites(120, 5);
   std::vector<Domain::Cell> cells;
   d.integrate(sites, cells);
@@ -856,7 +856,7 @@ BOOST_AUTO_TEST_CASE(gradient_matches_finite_differences_along_tangents)
 BOOST_AUTO_TEST_CASE(lloyd_and_lbfgs_give_uniform_cells_with_a_monotone_energy)
 {
   const Sphere_background bg(4, &uniform);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const std::size_t n = 300;
   const std::vector<Point> start = d.initial_sites(n, 1);
   for(const auto& p : start) BOOST_TEST(d.contains(p));
@@ -903,7 +903,7 @@ BOOST_AUTO_TEST_CASE(lloyd_and_lbfgs_give_uniform_cells_with_a_monotone_energy)
 BOOST_AUTO_TEST_CASE(a_graded_density_gives_cell_areas_following_rho_to_the_minus_one_half)
 {
   const Sphere_background bg(4, &graded), flat(4, &uniform);
-  const Domain d(bg.itri, bg.emb, 2), area_of(flat.itri, flat.emb, 2);
+  Domain d(bg.itri, bg.emb, 2), area_of(flat.itri, flat.emb, 2);
   std::vector<Point> x = d.initial_sites(400, 2);
   const AC::Cvt_report rep = AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(60u));
   BOOST_TEST(rep.energy.back() < rep.energy.front());
@@ -933,9 +933,9 @@ BOOST_AUTO_TEST_CASE(the_dual_is_a_closed_outward_genus_zero_surface)
 {
   // (with few sites the graded density's CVT leaves the south empty: all sites in one hemisphere, refused below)
   const Sphere_background bg(3, &graded), flat(3, &uniform);
-  const Domain graded_domain(bg.itri, bg.emb, 2), uniform_domain(flat.itri, flat.emb, 2);
+  Domain graded_domain(bg.itri, bg.emb, 2), uniform_domain(flat.itri, flat.emb, 2);
   for(std::size_t n : {4u, 5u, 37u, 250u}) {
-    const Domain& d = n < 10 ? uniform_domain : graded_domain;
+    Domain& d = n < 10 ? uniform_domain : graded_domain;
     std::vector<Point> x = d.initial_sites(n, 3);
     AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(10u));
     const auto tris = d.dual_triangles(x);
@@ -977,7 +977,7 @@ BOOST_AUTO_TEST_CASE(the_dual_is_a_closed_outward_genus_zero_surface)
 BOOST_AUTO_TEST_CASE(background_location_gives_the_site_back)
 {
   const Sphere_background bg(3, &graded);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   std::vector<Point> probes = d.initial_sites(500, 4);
   const std::vector<Point> random = random_sites(500, 9);
   probes.insert(probes.end(), random.begin(), random.end());
@@ -1016,7 +1016,7 @@ BOOST_AUTO_TEST_CASE(background_location_gives_the_site_back)
 BOOST_AUTO_TEST_CASE(voronoi_cells_tile_the_sphere)
 {
   const Sphere_background bg(3, &uniform);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const std::vector<Point> x = d.initial_sites(150, 6);
   const auto cells = d.voronoi_cells(x);
   BOOST_TEST(cells.size() == x.size());
@@ -1041,7 +1041,7 @@ BOOST_AUTO_TEST_CASE(voronoi_cells_tile_the_sphere)
 BOOST_AUTO_TEST_CASE(degenerate_sites_and_inputs_name_the_problem)
 {
   const Sphere_background bg(3, &uniform);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   auto message_of = [](auto&& f) -> std::string {
     try {
       f();
@@ -1120,7 +1120,7 @@ BOOST_AUTO_TEST_CASE(integration_time_on_a_fine_background)
   // 20480 chordal triangles, 1000 sites, 2 threads: the size of a 10k-vertex remesh to 1000 vertices
   const Sphere_background bg(5, &graded);
   auto t0 = std::chrono::steady_clock::now();
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const double build = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::vector<Point> x = d.initial_sites(1000, 0);
   AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(5u));

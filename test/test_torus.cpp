@@ -177,7 +177,7 @@ BOOST_AUTO_TEST_CASE(periodic_cvt_integrates_exactly_and_its_dual_is_a_torus)
   const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
   AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
   const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
-  const AC::Euclidean_periodic_domain_traits domain(t, emb, 2);
+  AC::Euclidean_periodic_domain_traits domain(t, emb, 2);
   const std::size_t n = 150;
   std::vector<Eigen::Vector2d> sites = domain.initial_sites(n, 3);
   for(const auto& p : sites) {
@@ -414,7 +414,7 @@ BOOST_AUTO_TEST_CASE(pictures_of_the_periodic_cvt_and_of_a_curved_mesh)
   const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
   AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
   const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
-  const AC::Euclidean_periodic_domain_traits domain(t, emb, 1);
+  AC::Euclidean_periodic_domain_traits domain(t, emb, 1);
   const std::vector<Eigen::Vector2d> sites = domain.initial_sites(200, 0);
   const auto cells = domain.voronoi_cells(sites);
   BOOST_TEST(cells.size() == sites.size());

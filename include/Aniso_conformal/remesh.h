@@ -279,11 +279,8 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
     const Planar_embedding emb = conformal_embedding(itri, np);
     internal::record_embedding(emb, result);
     result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
-    Planar_domain_traits traits(itri, emb, threads);
-    double adjusted_area = 0;  // after the embedding's flips, whose lengths the boundary spacing matches
-    for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
-      adjusted_area += internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
-    std::vector<Planar_domain_traits::Point> sites = traits.initial_sites(n, seed, adjusted_area);
+    Planar_domain_traits traits(itri, emb, threads);  // after the embedding's flips, whose lengths the boundary spacing matches
+    std::vector<Planar_domain_traits::Point> sites = traits.initial_sites(n, seed);
     out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
   } else if(domain == Parametric_domain::SPHERE) {
     internal::Stage_timer t3(vis, Stage::EMBEDDING);
