@@ -494,10 +494,12 @@ BOOST_AUTO_TEST_CASE(bgl_entry_point_leaves_the_input_alone_and_the_output_empty
       BOOST_ERROR("the BGL run failed: " << e.what());
     }
     BOOST_TEST((snapshot(in) == before));
-    // Remeshing_failure (more vertices than the background carries): the output stays empty
+    // Invalid_input (a metric with a NaN): the output stays empty
     Mesh empty;
-    BOOST_CHECK_THROW(AC::remesh(in, field, empty, AC::parameters::number_of_vertices(std::size_t(1000000))),
-                      AC::Remeshing_failure);
+    std::vector<Eigen::Matrix3d> nan_field = t;
+    nan_field[1](0, 0) = std::numeric_limits<double>::quiet_NaN();
+    BOOST_CHECK_THROW(AC::remesh(in, AC::Tensor_field_metric(nan_field), empty, AC::parameters::number_of_vertices(n)),
+                      AC::Invalid_input);
     BOOST_TEST(num_vertices(empty) == 0u);
     BOOST_TEST(num_faces(empty) == 0u);
     // Convergence_failure deep in the pipeline (a 1e8 jump between neighbours, 2 Newton iterations)
@@ -668,10 +670,15 @@ BOOST_AUTO_TEST_CASE(closed_genus_two_goes_to_the_hyperbolic_disk)
                         AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(20)));
                       }),
                       "too few for the hyperbolic surface"));
-  // 60 sites: more than this coarse background (48 vertices) carries; refused as a valid input this
-  // version cannot remesh (a background refined to the requested size is issue 14)
-  BOOST_TEST(contains(remeshing_failure_message([&] {
-                        AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(60)));
-                      }),
-                      "exceed what the background triangulation can carry (48 vertices)"));
+  // 60 and 400 sites, more than this coarse input's 48 vertices: the background is refined on its faces
+  // (issue 14), and the output is a valid genus-2 surface (2 n + 4 (g - 1) triangles) on the input
+  for(std::size_t n : {60u, 400u}) {
+    const AC::Remeshed_surface out = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+    BOOST_TEST(out.points.size() == n);
+    BOOST_TEST(out.faces.size() == 2 * n + 4);
+    BOOST_TEST((r.domain == AC::Parametric_domain::HYPERBOLIC));
+    BOOST_TEST(r.inverted_triangles == 0u);
+    BOOST_TEST(r.refinement.vertices_after >= 3 * n);
+    BOOST_TEST(r.hausdorff_distance_relative < 0.05, n << " sites: Hausdorff distance " << r.hausdorff_distance_relative);
+  }
 }

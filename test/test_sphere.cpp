@@ -517,6 +517,29 @@ BOOST_AUTO_TEST_CASE(a_real_genus_zero_model_bear_at_two_sizes)
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_twelve_triangle_cube_remeshes_to_two_thousand_vertices)
+{
+  // more output vertices than the input has: the background is refined on the cube's faces (issue 14)
+  const AC::Input_surface cube({{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+                               {{{0, 2, 1}}, {{0, 3, 2}}, {{4, 5, 6}}, {{4, 6, 7}}, {{0, 1, 5}}, {{0, 5, 4}}, {{1, 2, 6}}, {{1, 6, 5}},
+                                {{2, 3, 7}}, {{2, 7, 6}}, {{3, 0, 4}}, {{3, 4, 7}}});
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_sphere(cube, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(2000)));
+  BOOST_TEST(out.points.size() == 2000u);
+  BOOST_TEST(out.faces.size() == 3996u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.refinement.vertices_before == 8u);
+  BOOST_TEST(r.refinement.vertices_after >= 4000u);
+  // every output vertex lies on a face of the cube
+  double off = 0;
+  for(const auto& p : out.points) off = std::max(off, std::abs(p.cwiseAbs().maxCoeff() - 1));
+  BOOST_TEST(off < 1e-12);
+  BOOST_TEST(r.quality.G_avg >= 0.9);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+  BOOST_TEST_MESSAGE("cube to 2000: G_avg " << r.quality.G_avg << ", theta_min " << r.quality.theta_min << ", Hausdorff "
+                                             << r.hausdorff_distance_relative << " of the diagonal (corners rounded: issue 15)");
+}
+
 BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)
 {
   // the cow's legs and tail: the conformal map to the sphere shrinks them below double precision

@@ -412,6 +412,21 @@ BOOST_AUTO_TEST_CASE(bad_genus_one_inputs_name_the_problem)
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_coarse_torus_remeshes_to_ten_times_its_vertices)
+{
+  // 96 input vertices, 1000 output vertices: the background is refined on the input's faces (issue 14)
+  const AC::Input_surface s = AC::make_dupin_cyclide(12, 8);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_torus(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000)));
+  BOOST_TEST(out.points.size() == 1000u);
+  BOOST_TEST(out.faces.size() == 2000u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.refinement.vertices_after >= 2000u);
+  BOOST_TEST(r.quality.G_avg >= 0.9);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+  BOOST_TEST_MESSAGE("coarse cyclide to 1000: G_avg " << r.quality.G_avg << ", theta_min " << r.quality.theta_min);
+}
+
 BOOST_AUTO_TEST_CASE(a_real_genus_one_model_knot1)
 {
   // CGAL's trefoil-knot tube (the shipped stand-in for the paper's Kitten), curvature metric [1, 5]
