@@ -97,10 +97,10 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::ofstream f(p);
       if(!f) throw AC::Invalid_input("cannot write " + o.report);
       AC::IO::write_report_json(f, result,
-                                {{"input_name", AC::IO::internal::json_string(input_name)},
-                                 {"requested_vertices", std::to_string(o.vertices)},
-                                 {"seed", std::to_string(o.seed)},
-                                 {"background_seconds", AC::IO::internal::json_number(background_seconds)}});
+                                {{"input_name", input_name},
+                                 {"requested_vertices", o.vertices},
+                                 {"seed", o.seed},
+                                 {"background_seconds", AC::IO::internal::report_number(background_seconds)}});
       if(!f) throw AC::Invalid_input("cannot write " + o.report);
     });
   if(!o.svg.empty())
@@ -150,8 +150,8 @@ int main_impl(int argc, char** argv)
 {
   std::vector<std::string> args(argv + 1, argv + argc);
   const aniso_remesh::Options o = aniso_remesh::parse_command_line(args);
-  if(o.help) { std::fputs(aniso_remesh::usage(), stdout); return 0; }
-  if(o.version) { std::puts("aniso_remesh (Aniso_conformal) 0.1.0"); return 0; }
+  if(o.help) { std::fputs(aniso_remesh::usage().c_str(), stdout); return 0; }
+  if(o.version) { std::puts(aniso_remesh::version_line()); return 0; }
 
   const auto t0 = std::chrono::steady_clock::now();
   auto since = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
