@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // The command-line tool: argument parsing on its own (CLI11), then the built tool run end to end (exit
-// status, the one-line messages, the files it writes and does not write, the JSON report read back with
-// nlohmann-json).
+// status 0/1/2/3, the one-line printable messages, the files it writes and does not write, the JSON report
+// read back with nlohmann-json).
 
 #define BOOST_TEST_MODULE Aniso_conformal_cli
 #include <boost/test/unit_test.hpp>
@@ -17,10 +17,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -60,6 +62,32 @@ bool exists(const std::string& p) { return std::ifstream(p).good(); }
 void write_file(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
+
+// one line of printable ASCII: what the tool may print about any input
+bool printable_line(const std::string& s)
+{
+  if(s.empty() || s.back() != '\n') return false;
+  return std::all_of(s.begin(), s.end() - 1, [](char c) { return c >= 0x20 && c < 0x7f; });
+}
+
+// `n` bytes of binary garbage (every byte value, NUL, newlines, an escape sequence), the same on every run
+std::string garbage(std::size_t n, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::string g(n, '\0');
+  for(char& c : g) c = char(random() & 0xff);
+  g[3] = '\x1b';  // an ANSI escape
+  g[10] = '\n';
+  return g;
+}
+
+aniso_remesh::Options parse(std::vector<std::string> a) { return aniso_remesh::parse_command_line(a); }
+
+std::string parse_error(std::vector<std::string> a)
+{
+  try { aniso_remesh::parse_command_line(a); } catch(const Aniso_conformal::Invalid_input& e) { return e.what(); }
+  return "(accepted)";
+}
 
 } // namespace
 
@@ -384,5 +412,74 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_zero_surface_on_the_sphere)
   BOOST_TEST(bad.status == 2);
   BOOST_TEST(bad.err.find("flat-torus domain does not fit") != std::string::npos);
   BOOST_TEST(bad.err.find("genus 0") != std::string::npos);
+  BOOST_TEST(!exists(mesh));
+}
+
+BOOST_AUTO_TEST_CASE(garbage_files_exit_2_with_a_printable_one_line_message)
+{
+  // binary garbage as every kind of input file: exit 2, one line of printable ASCII on stderr (no raw
+  // byte of the file reaches the terminal), nothing on stdout
+  const std::string square = out_dir + "/cli_garbage_square.off";
+  write_file(square, "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  const std::string off = out_dir + "/cli_garbage.off", obj = out_dir + "/cli_garbage.obj", ply = out_dir + "/cli_garbage.ply",
+                    off_token = out_dir + "/cli_garbage_token.off", metric = out_dir + "/cli_garbage.metric",
+                    metric_row = out_dir + "/cli_garbage_row.metric", image = out_dir + "/cli_garbage.img",
+                    png = out_dir + "/cli_garbage.png", pgm = out_dir + "/cli_garbage.pgm";
+  write_file(off, garbage(3000, 1));
+  write_file(obj, garbage(3000, 2));
+  write_file(ply, "ply\nformat ascii 1.0\n" + garbage(3000, 3));
+  std::string token = garbage(60, 9).substr(12);
+  std::replace_if(token.begin(), token.end(), [](char c) { return c == '\0' || std::isspace(static_cast<unsigned char>(c)) || c == '#'; }, '\x7f');
+  write_file(off_token, "OFF\n3 1 0\n0 0 0\n1 " + token + " 0\n0 1 0\n3 0 1 2\n");
+  write_file(metric, garbage(3000, 4));
+  write_file(metric_row, "4\n1 0 0 1 0 0\n" + garbage(3000, 5));
+  write_file(image, garbage(3000, 6));
+  write_file(png, "\x89PNG\r\n\x1a\n" + garbage(3000, 7));
+  write_file(pgm, "P5\n" + garbage(3000, 8));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    {"--input " + off, "cli_garbage.off"},
+    {"--input " + off_token, "is not a number"},
+    {"--input " + obj, "cli_garbage.obj"},
+    {"--input " + ply, "cli_garbage.ply"},
+    {"--input " + square + " --metric-file " + metric, "cli_garbage.metric"},
+    {"--input " + square + " --metric-file " + metric_row, "is not a number"},
+    {"--image " + image, "not a PNG, PGM or PPM file"},
+    {"--image " + png, "invalid PNG"},
+    {"--image " + pgm, "cli_garbage.pgm"}};
+  for(const auto& [args, part] : cases) {
+    const Run r = run(args + " --vertices 10");
+    BOOST_TEST_INFO(args << " -> " << r.err);
+    BOOST_TEST(r.status == 2);
+    BOOST_TEST(printable_line(r.err));
+    BOOST_TEST(r.err.find(part) != std::string::npos);
+    BOOST_TEST(r.out.empty());
+  }
+  // a quoted token is escaped and cut: \xNN for its bytes, at most 40 of them, then "..."
+  const Run r = run("--input " + off_token + " --vertices 10");
+  BOOST_TEST(r.err.find("\\x7f") != std::string::npos);
+  BOOST_TEST(r.err.find("...' is not a number") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(valid_input_this_version_cannot_remesh_exits_3)
+{
+  // a planar annulus is a valid surface, but with two boundary loops it has no domain in this version
+  const int n = 16;
+  std::ostringstream off;
+  off << "OFF\n" << 2 * n << " " << 2 * n << " 0\n";
+  for(int ring = 1; ring <= 2; ++ring)
+    for(int i = 0; i < n; ++i) off << ring * std::cos(2 * M_PI * i / n) << " " << ring * std::sin(2 * M_PI * i / n) << " 0\n";
+  for(int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    off << "3 " << i << " " << n + i << " " << n + j << "\n3 " << i << " " << n + j << " " << j << "\n";
+  }
+  const std::string annulus = out_dir + "/cli_annulus.off", mesh = out_dir + "/cli_annulus_out.off";
+  write_file(annulus, off.str());
+  std::remove(mesh.c_str());
+  const Run r = run("--input " + annulus + " --vertices 20 --output " + mesh);
+  BOOST_TEST(r.status == 3);
+  BOOST_TEST(r.err.find("aniso_remesh: cannot remesh: ") == 0u);
+  BOOST_TEST(r.err.find("2 boundary loops") != std::string::npos);
+  BOOST_TEST(printable_line(r.err));
+  BOOST_TEST(r.out.empty());
   BOOST_TEST(!exists(mesh));
 }
