@@ -446,6 +446,11 @@ BOOST_AUTO_TEST_CASE(fuzz_regressions_images)
   BOOST_TEST(contains(image_error("png_size_product_overflows.png"), "invalid PNG: PNG unsigned integer out of range"));
   // 16384 x 16384 RGBA 16 bits with 100 bytes of data: a 2 GB buffer before inflating them
   BOOST_TEST(contains(image_error("png_2_gb_buffer_for_100_bytes.png"), "corrupt or truncated PNG image data"));
+  // the fuzzer's input, a 68-byte file whose tEXt chunk declares 1.1 GB: libpng only warns that the chunk
+  // is above its 8 MB limit, then allocates it (libFuzzer out-of-memory); chunk lengths are checked first
+  BOOST_TEST(contains(image_error("png_text_chunk_of_1_gb.png"), "invalid PNG: chunk 'tEXt' of 1140850691 bytes runs past the end"));
+  // the same with the file ending right after the chunk's length and type (169 MB asked for)
+  BOOST_TEST(contains(image_error("png_text_chunk_header_at_the_end.png"), "chunk 'tEXt' of 169478656 bytes runs past the end"));
   BOOST_TEST(contains(message_of([] { AC::IO::read_image(write_file("big_ascii.pgm", "P2\n1000 1000\n255\n0 0 0\n")); }),
                       "truncated pixel data"));
   // exact sizes still read: binary data right after the single whitespace, ASCII without a final newline
