@@ -20,7 +20,8 @@
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/make_image_background.h>
 #include <Aniso_conformal/make_square_background.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/Planar_domain.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include "mesh_checks.h"
 
@@ -37,10 +38,18 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace AC = Aniso_conformal;
 
 namespace {
+
+// the pipeline in the plane: what remesh() runs for a disk (images, square backgrounds, the face mask)
+template <typename... Args>
+auto remesh_plane(Args&&... args) -> decltype(AC::remesh_in_domain<AC::Planar_domain>(std::forward<Args>(args)...))
+{
+  return AC::remesh_in_domain<AC::Planar_domain>(std::forward<Args>(args)...);
+}
 
 const std::string out_dir = ANISO_CONFORMAL_TEST_OUTPUT_DIR;
 const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
@@ -133,7 +142,7 @@ BOOST_AUTO_TEST_CASE(bundled_face_mask_remeshes_as_a_disk)
   o.stretch_max = 4;
   const AC::Curvature_metric metric(s, o);
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(std::size_t(250)));
+  const AC::Remeshed_surface out = remesh_plane(s, metric, r, AC::parameters::number_of_vertices(std::size_t(250)));
   BOOST_TEST(out.points.size() == 250u);
   BOOST_TEST(r.inverted_triangles == 0u);
   // one disk: Euler characteristic 1, one boundary loop made of the boundary sites
@@ -276,7 +285,7 @@ BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
   const AC::Image_metric metric(crop, 0.5);
   const AC::Input_surface bg = AC::make_image_background(crop);
   AC::Remeshing_result r;
-  const auto out = AC::remesh(bg, metric, r, AC::parameters::number_of_vertices(std::size_t(400)));
+  const auto out = remesh_plane(bg, metric, r, AC::parameters::number_of_vertices(std::size_t(400)));
   BOOST_TEST(out.points.size() == 400u);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.corners == 4u);
@@ -329,7 +338,7 @@ BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
   const AC::IO::Image ct = AC::IO::read_image(data_dir + "/images/ct_head_211.png");
   const AC::Image_metric metric(ct, 0.2);
   AC::Remeshing_result r;
-  const auto out = AC::remesh(AC::make_image_background(ct), metric, r, AC::parameters::number_of_vertices(std::size_t(1500)));
+  const auto out = remesh_plane(AC::make_image_background(ct), metric, r, AC::parameters::number_of_vertices(std::size_t(1500)));
   BOOST_TEST(out.points.size() == 1500u);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.conformal_flips > 0u);
@@ -339,7 +348,7 @@ BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
   // at the paper's s = 0.5 this slice cannot be remeshed well: a clear exception, never flat triangles
   bool refused = false;
   try {
-    AC::remesh(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
+    remesh_plane(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
                AC::parameters::number_of_vertices(std::size_t(3000)));
   } catch(const AC::Convergence_failure& e) {
     refused = std::string(e.what()).find("degenerate triangles") != std::string::npos && e.residual() > 0;

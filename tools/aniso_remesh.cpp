@@ -123,8 +123,11 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
 
   if(!o.quiet) {
     const AC::Quality_report& q = result.quality;
-    std::printf("input        %s: %zu vertices, %zu faces (background %zu vertices)\n", AC::internal::printable(input_name).c_str(),
+    std::printf("input        %s: %zu vertices, %zu faces (background %zu vertices", AC::internal::printable(input_name).c_str(),
                 result.input_vertices, result.input_faces, result.background_vertices);
+    if(result.refinement.splits > 0)
+      std::printf(", refined from %zu by %zu edge splits", result.refinement.vertices_before, result.refinement.splits);
+    std::printf(")\n");
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
                 AC::domain_name(result.domain));

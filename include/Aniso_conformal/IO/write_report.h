@@ -66,7 +66,9 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * the report of `r` as a JSON object: `domain`; `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
- * histogram, the normalised metric edge lengths); `edge_adjustment` (flips, splits, rounds, repairs);
+ * histogram, the normalised metric edge lengths); `refinement` (the background refined for the requested
+ * size: vertices before and after, splits, the output's and the longest edge length in the metric);
+ * `edge_adjustment` (flips, splits, rounds, repairs);
  * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range,
  * and the domain's own figures from `r.domain_diagnostics`, written generically: a scalar, a vector or a
  * matrix as rows); `cvt` (method, iterations, energy per iteration); `seconds` (wall time per stage and
@@ -100,6 +102,11 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                     {"normalized_stddev", report_number(q.edge_length_stddev)},
                     {"normalized_min", report_number(q.edge_length_min)},
                     {"normalized_max", report_number(q.edge_length_max)}}}};
+  j["refinement"] = {{"vertices_before", r.refinement.vertices_before},
+                     {"vertices_after", r.refinement.vertices_after},
+                     {"splits", r.refinement.splits},
+                     {"output_edge_length", report_number(r.refinement.output_edge_length)},
+                     {"longest_edge", report_number(r.refinement.longest_edge)}};
   j["edge_adjustment"] = {{"invalid_triangles_before", r.adjustment.invalid_triangles_before},
                           {"flips", r.adjustment.flips},
                           {"splits", r.adjustment.splits},
