@@ -143,27 +143,20 @@ public:
    */
   int flip(int h)
   {
-    int t = m_twin[h];
+    const int t = m_twin[h];
     if(t < 0) throw Internal_error("Intrinsic_triangulation::flip(): boundary edge");
-    int f0 = face(h), f1 = face(t);
-    int a = tail(h), b = head(h), c = opposite_vertex(h), d = opposite_vertex(t);
-    int hbc = next(h), hca = prev(h), had = next(t), hdb = prev(t);
-    int Tbc = m_twin[hbc], Tca = m_twin[hca], Tad = m_twin[had], Tdb = m_twin[hdb];
-    double Lbc = m_length[hbc], Lca = m_length[hca], Lad = m_length[had], Ldb = m_length[hdb];
+    const int f0 = face(h), f1 = face(t);
+    const int a = tail(h), b = head(h), c = opposite_vertex(h), d = opposite_vertex(t);
+    const int hbc = next(h), hca = prev(h), had = next(t), hdb = prev(t);
+    const int Tbc = m_twin[hbc], Tca = m_twin[hca], Tad = m_twin[had], Tdb = m_twin[hdb];
+    const double Lbc = m_length[hbc], Lca = m_length[hca], Lad = m_length[had], Ldb = m_length[hdb];
     m_faces[f0] = {{c, a, d}};
     m_faces[f1] = {{d, b, c}};
-    auto set = [&](int he, int tw, double len) {
-      m_twin[he] = tw;
-      if(tw >= 0) m_twin[tw] = he;
-      m_length[he] = len;
-    };
-    set(3 * f0 + 0, Tca, Lca);
-    set(3 * f0 + 1, Tad, Lad);
-    set(3 * f1 + 0, Tdb, Ldb);
-    set(3 * f1 + 1, Tbc, Lbc);
-    m_twin[3 * f0 + 2] = 3 * f1 + 2;
-    m_twin[3 * f1 + 2] = 3 * f0 + 2;
-    m_length[3 * f0 + 2] = m_length[3 * f1 + 2] = std::numeric_limits<double>::quiet_NaN();
+    link(3 * f0 + 0, Tca, Lca);
+    link(3 * f0 + 1, Tad, Lad);
+    link(3 * f1 + 0, Tdb, Ldb);
+    link(3 * f1 + 1, Tbc, Lbc);
+    link(3 * f0 + 2, 3 * f1 + 2, std::numeric_limits<double>::quiet_NaN());
     m_out[c] = 3 * f0 + 0;
     m_out[a] = 3 * f0 + 1;
     m_out[d] = 3 * f1 + 0;
@@ -178,52 +171,36 @@ public:
   int split(int h, const Surface_point& p, const Eigen::Matrix3d& Q)
   {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    int t = m_twin[h];
-    int m = int(m_points.size());
+    const int t = m_twin[h];
+    const int m = int(m_points.size());
     m_points.push_back(p);
     m_Q.push_back(Q);
     m_input_vertex.push_back(-1);
     m_corner.push_back(0);
     m_out.push_back(-1);
-    int f0 = face(h);
-    int a = tail(h), b = head(h), c = opposite_vertex(h);
-    int Tbc = m_twin[next(h)], Tca = m_twin[prev(h)];
-    double Lbc = m_length[next(h)], Lca = m_length[prev(h)];
-    int f2 = int(m_faces.size());
-    m_faces.push_back({{m, b, c}});
-    m_twin.resize(3 * m_faces.size(), -1);
-    m_length.resize(3 * m_faces.size(), nan);
-    m_faces[f0] = {{a, m, c}};
-    auto link = [&](int x, int y) {
-      m_twin[x] = y;
-      if(y >= 0) m_twin[y] = x;
-    };
+    const int f0 = face(h);
+    const int a = tail(h), b = head(h), c = opposite_vertex(h);
+    const int Tbc = m_twin[next(h)], Tca = m_twin[prev(h)];
+    const double Lbc = m_length[next(h)], Lca = m_length[prev(h)];
     // f0 = (a, m, c), f2 = (m, b, c)
-    link(3 * f0 + 1, 3 * f2 + 2);  // m->c / c->m
-    link(3 * f0 + 2, Tca);
-    m_length[3 * f0 + 2] = Lca;
-    link(3 * f2 + 1, Tbc);
-    m_length[3 * f2 + 1] = Lbc;
-    m_length[3 * f0 + 0] = m_length[3 * f0 + 1] = m_length[3 * f2 + 0] = m_length[3 * f2 + 2] = nan;
+    m_faces[f0] = {{a, m, c}};
+    const int f2 = add_face({{m, b, c}});
+    link(3 * f0 + 1, 3 * f2 + 2, nan);  // m->c / c->m
+    link(3 * f0 + 2, Tca, Lca);
+    link(3 * f2 + 1, Tbc, Lbc);
+    m_length[3 * f0 + 0] = m_length[3 * f2 + 0] = nan;
     if(t >= 0) {
-      int f1 = face(t);
-      int d = opposite_vertex(t);
-      int Tad = m_twin[next(t)], Tdb = m_twin[prev(t)];
-      double Lad = m_length[next(t)], Ldb = m_length[prev(t)];
-      int f3 = int(m_faces.size());
-      m_faces.push_back({{m, a, d}});
-      m_twin.resize(3 * m_faces.size(), -1);
-      m_length.resize(3 * m_faces.size(), nan);
-      m_faces[f1] = {{b, m, d}};
+      const int f1 = face(t), d = opposite_vertex(t);
+      const int Tad = m_twin[next(t)], Tdb = m_twin[prev(t)];
+      const double Lad = m_length[next(t)], Ldb = m_length[prev(t)];
       // f1 = (b, m, d), f3 = (m, a, d)
-      link(3 * f1 + 0, 3 * f2 + 0);  // b->m / m->b
-      link(3 * f1 + 1, 3 * f3 + 2);  // m->d / d->m
-      link(3 * f1 + 2, Tdb);
-      m_length[3 * f1 + 2] = Ldb;
-      link(3 * f3 + 0, 3 * f0 + 0);  // m->a / a->m
-      link(3 * f3 + 1, Tad);
-      m_length[3 * f3 + 1] = Lad;
-      m_length[3 * f1 + 0] = m_length[3 * f1 + 1] = m_length[3 * f3 + 0] = m_length[3 * f3 + 2] = nan;
+      m_faces[f1] = {{b, m, d}};
+      const int f3 = add_face({{m, a, d}});
+      link(3 * f1 + 0, 3 * f2 + 0, nan);  // b->m / m->b
+      link(3 * f1 + 1, 3 * f3 + 2, nan);  // m->d / d->m
+      link(3 * f1 + 2, Tdb, Ldb);
+      link(3 * f3 + 0, 3 * f0 + 0, nan);  // m->a / a->m
+      link(3 * f3 + 1, Tad, Lad);
       m_out[d] = 3 * f3 + 2;
     } else {
       m_twin[3 * f0 + 0] = -1;
@@ -261,6 +238,25 @@ public:
   /// @}
 
 private:
+  // makes halfedges x and y twins (y may be -1: a boundary), both of length `length`
+  void link(int x, int y, double length)
+  {
+    m_twin[x] = y;
+    m_length[x] = length;
+    if(y >= 0) {
+      m_twin[y] = x;
+      m_length[y] = length;
+    }
+  }
+  // appends the face with corners c, its halfedges without twins or lengths; returns its index
+  int add_face(const std::array<int, 3>& c)
+  {
+    m_faces.push_back(c);
+    m_twin.resize(3 * m_faces.size(), -1);
+    m_length.resize(3 * m_faces.size(), std::numeric_limits<double>::quiet_NaN());
+    return int(m_faces.size()) - 1;
+  }
+
   std::vector<Surface_point> m_points;
   std::vector<Eigen::Matrix3d> m_Q;
   std::vector<int> m_input_vertex;
