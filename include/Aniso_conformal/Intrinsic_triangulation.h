@@ -9,6 +9,7 @@
 #include <Aniso_conformal/Surface_point.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 #include <cmath>
@@ -48,6 +49,15 @@ public:
     for(std::size_t i = 0; i < nv; ++i) m_input_vertex[i] = int(i);
     m_corner.assign(nv, 0);
     for(const auto& f : surface.faces()) m_faces.push_back({{int(f[0]), int(f[1]), int(f[2])}});
+    // the input's own angle sums (Euclidean, from the positions): what the boundary of a planar layout
+    // that keeps the input's shape is built from (conformal_embedding())
+    m_input_angle_sum.assign(nv, 0.0);
+    for(const auto& f : surface.faces())
+      for(int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d& p = surface.points()[f[std::size_t(k)]];
+        const Eigen::Vector3d a = surface.points()[f[std::size_t((k + 1) % 3)]] - p, b = surface.points()[f[std::size_t((k + 2) % 3)]] - p;
+        m_input_angle_sum[f[std::size_t(k)]] += std::atan2(a.cross(b).norm(), a.dot(b));
+      }
     m_twin.assign(3 * m_faces.size(), -1);
     m_length.assign(3 * m_faces.size(), std::numeric_limits<double>::quiet_NaN());
     std::map<std::pair<int, int>, int> by_ends;
@@ -130,6 +140,14 @@ public:
     m_length[h] = l;
     if(m_twin[h] >= 0) m_length[m_twin[h]] = l;
   }
+  /*!
+   * the sum of the input triangles' angles (Euclidean, in radians) at the point of vertex `v`, measured
+   * on the input surface, not in the metric: at a boundary vertex, the input's interior angle there, so
+   * that `pi - input_angle_sum(v)` is the turning angle of the input's boundary (its geodesic curvature,
+   * concentrated at the vertex). A vertex inserted by a split gets `pi` on a boundary edge and `2 pi`
+   * inside (a point of an input edge or face).
+   */
+  double input_angle_sum(int v) const { return m_input_angle_sum[std::size_t(v)]; }
   /// marks `v` as a boundary corner (kept as an output vertex)
   void set_corner(int v, bool c) { m_corner[v] = c; }
   bool is_corner(int v) const { return m_corner[v] != 0; }                           ///< `true` for a boundary corner
@@ -177,6 +195,7 @@ public:
     m_Q.push_back(Q);
     m_input_vertex.push_back(-1);
     m_corner.push_back(0);
+    m_input_angle_sum.push_back(t >= 0 ? 2 * 3.14159265358979323846 : 3.14159265358979323846);
     m_out.push_back(-1);
     const int f0 = face(h);
     const int a = tail(h), b = head(h), c = opposite_vertex(h);
@@ -261,6 +280,7 @@ private:
   std::vector<Eigen::Matrix3d> m_Q;
   std::vector<int> m_input_vertex;
   std::vector<char> m_corner;
+  std::vector<double> m_input_angle_sum;
   std::vector<std::array<int, 3>> m_faces;
   std::vector<int> m_twin;
   std::vector<double> m_length;

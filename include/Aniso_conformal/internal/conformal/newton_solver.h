@@ -39,7 +39,7 @@ namespace internal {
 struct Conformal_solution {
   std::vector<double> u;       // log scale per vertex (the given start at the fixed vertices)
   std::size_t iterations = 0;  // Newton iterations
-  double residual = 0;         // max |2 pi - angle sum| over the free vertices
+  double residual = 0;         // max |target - angle sum| over the free vertices
   std::size_t degenerate = 0;  // triangles treated as flat at the end
   std::size_t flips = 0;       // intrinsic Delaunay flips
 };
@@ -63,7 +63,8 @@ struct Newton_bounds {
 
 /*
  * Solves for u with u fixed at the vertices where `fixed` is set (to their value in `u0`) and angle sum
- * 2 pi at the others, starting from `u0` (the initial guess at the free vertices). At least one vertex
+ * 2 pi at the others (or `(*target_angle_sums)[v]`, when given: a disk whose boundary angles are
+ * prescribed), starting from `u0` (the initial guess at the free vertices). At least one vertex
  * must be fixed in the Euclidean geometry (its energy is invariant under a constant shift of u); the
  * hyperbolic one has no gauge. Interior edges of `itri` are flipped by the geometry's flip rule before
  * every evaluation; no flip touches the star of a vertex marked in `keep_star`. `who` names the caller in
@@ -75,7 +76,8 @@ struct Newton_bounds {
 template <typename Geometry, typename Visitor>
 Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const Geometry& geometry, const std::vector<char>& fixed,
                                           std::vector<double> u0, const Newton_bounds& bounds, Visitor& vis, const std::string& who,
-                                          const std::vector<char>* keep_star = nullptr)
+                                          const std::vector<char>* keep_star = nullptr,
+                                          const std::vector<double>* target_angle_sums = nullptr)
 {
   const double two_pi = 2 * 3.14159265358979323846;
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
@@ -83,6 +85,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
   int n = 0;
   for(int v = 0; v < nv; ++v)
     if(!fixed[std::size_t(v)]) index[std::size_t(v)] = n++;
+  auto target = [&](int v) { return target_angle_sums ? (*target_angle_sums)[std::size_t(v)] : two_pi; };
 
   Conformal_solution sol;
   sol.u = std::move(u0);
@@ -115,7 +118,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
     }
     double r = 0;
     for(int v = 0; v < nv; ++v)
-      if(index[std::size_t(v)] >= 0) r = std::max(r, std::abs(two_pi - angle_sum[std::size_t(v)]));
+      if(index[std::size_t(v)] >= 0) r = std::max(r, std::abs(target(v) - angle_sum[std::size_t(v)]));
     return r;
   };
 
@@ -143,7 +146,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
                                 residual);
     Eigen::VectorXd g(n);
     for(int v = 0; v < nv; ++v)
-      if(index[std::size_t(v)] >= 0) g[index[std::size_t(v)]] = angle_sum[std::size_t(v)] - two_pi;
+      if(index[std::size_t(v)] >= 0) g[index[std::size_t(v)]] = angle_sum[std::size_t(v)] - target(v);
     const Eigen::VectorXd du = solver.solve(g);
     // backtracking on the residual: the energy is convex, so a full step is nearly always taken
     std::vector<double> trial(static_cast<std::size_t>(nv));
