@@ -86,7 +86,8 @@ Remeshed_surface remesh_in_domain(const Input_surface& surface, const Anisotropi
   result.domain_diagnostics = Domain::diagnostics(emb, traits);
 
   // 6. quality in the metric, orientation against the input, topology and distance to the input
-  internal::measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result);
+  internal::measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result,
+                                     internal::number_of_threads(np));
   return out;
 }
 
