@@ -45,8 +45,9 @@ struct Planar_embedding {
  * conformal equivalence (Springborn, Schroeder, Pinkall 2008) with per-vertex log scales `u`, scaled
  * lengths `l'_ij = exp((u_i + u_j) / 2) l_ij`, `u = 0` on the boundary (boundary lengths are kept) and
  * angle sum `2 pi` at interior vertices, solved by Newton's method with the cotangent Laplacian as
- * Hessian (Eigen's sparse Cholesky) and a backtracking line search; then laid out by unfolding
- * triangles breadth-first, and the conformal factor computed per vertex (paper eq.\ 6).
+ * Hessian (CHOLMOD's sparse Cholesky when the build found it, else Eigen's SimplicialLDLT) and a
+ * backtracking line search; then laid out by unfolding triangles breadth-first, and the conformal factor
+ * computed per vertex (paper eq.\ 6).
  *
  * Before every evaluation the triangulation is made intrinsically Delaunay for the scaled lengths
  * (Gillespie, Springborn and Crane 2021): interior edges are flipped, the new edge's length given by

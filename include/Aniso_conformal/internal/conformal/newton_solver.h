@@ -111,6 +111,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
     if(pass.flips > 0) connectivity_changed = true;
     std::fill(angle_sum.begin(), angle_sum.end(), 0.0);
     triplets.clear();
+    if(with_hessian) triplets.reserve(12 * std::size_t(nf));  // at most 12 entries per face
     degenerate = 0;
     for(int f = 0; f < nf; ++f) {
       const auto& c = itri.face_vertices(std::size_t(f));
@@ -133,6 +134,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
   residual = evaluate(sol.u, true, degenerate);
   for(; it < bounds.max_iterations && residual > bounds.tolerance; ++it) {
     H.setFromTriplets(triplets.begin(), triplets.end());
+    std::vector<Eigen::Triplet<double>>().swap(triplets);  // ~400 bytes per vertex: not kept through the factorisation
     if constexpr(Geometry::symmetrize_hessian) {  // symmetric up to rounding: LDLT must see one matrix
       Eigen::SparseMatrix<double> Ht = H.transpose();
       H = 0.5 * (H + Ht);
