@@ -12,8 +12,9 @@
 /*!
  * \defgroup PkgAnisoConformalMain Entry points
  * \ingroup PkgAnisoConformalRef
- * `remesh()` on an `Input_surface` or on any BGL triangle mesh, the validated input copy, and the
- * diagnostics it returns.
+ * `remesh()` on an `Input_surface` or on any BGL triangle mesh (the domain chosen from the topology),
+ * `remesh_in_domain()` (one domain chosen at compile time), the validated input copy, and the
+ * diagnostics they return (with the domain's own figures, `Domain_diagnostics`).
  */
 
 /*!
@@ -34,8 +35,10 @@
 /*!
  * \defgroup PkgAnisoConformalDomains Domains and backgrounds
  * \ingroup PkgAnisoConformalRef
- * Models of `ParametricDomainTraits` (the plane, for disks) and the builders of background
- * triangulations for 2D domains and images.
+ * The four canonical domains as models of `ParametricDomain` (`Planar_domain`, `Spherical_domain`,
+ * `Flat_torus_domain`, `Hyperbolic_domain`), their domain traits, models of `ParametricDomainTraits`
+ * (the plane, the unit sphere, the flat torus, the hyperbolic surface in the Klein disk), and the
+ * builders of background triangulations for 2D domains and images.
  */
 
 /*!
@@ -68,10 +71,11 @@
  * | `random_seed` | 0 | initial sites; the same seed gives the same output bit for bit |
  * | `corner_angle` | 30 | boundary turning angle (degrees) above which an input vertex is kept as a corner |
  * | `max_adjustment_rounds` | 50 | bound on the flip-then-split rounds of `adjust_edge_lengths()` |
- * | `max_flips_per_edge` | 20 / 50 | bound on the flips of one flip pass, per edge: 20 in `adjust_edge_lengths()` (the pass stops, the splits go on), 50 in the conformal solves (`Convergence_failure`) |
- * | `max_conformal_iterations` | 100 | bound on the Newton steps of `conformal_embedding()`, `spherical_embedding()`, `flat_torus_embedding()` |
+ * | `max_flips_per_edge` | 50 | bound on the flips of one intrinsic flip pass, per edge it starts with, plus 100: in `adjust_edge_lengths()` the pass stops and the splits go on; in the conformal solves it is a `Convergence_failure` |
+ * | `max_conformal_iterations` | 100 | bound on the Newton steps of `conformal_embedding()`, `spherical_embedding()`, `flat_torus_embedding()`, `hyperbolic_embedding()` |
  * | `conformal_tolerance` | 1e-9 | angle-sum error (radians) Newton's method must reach |
  * | `number_of_threads` | 0 (all cores) | workers of the CVT integration |
+ * | `parametric_domain` | `Parametric_domain::AUTOMATIC` | `remesh()`: the domain, refused (`Invalid_input`) if it does not fit the topology |
  * | `visitor` | `Default_visitor` | a model of `AnisoConformalVisitor`; pass `std::ref(v)` to keep its state |
  * | `vertex_point_map`, `vertex_index_map` | the mesh's internal maps | the input BGL mesh of `remesh()` |
  */
@@ -81,6 +85,9 @@
  * \ingroup PkgAnisoConformalRef
  * The exceptions the library throws, all derived from `Aniso_conformal::Error` (a
  * `std::runtime_error`); every message names the problem and where (file, line, vertex, face).
+ * `Invalid_input`: the input is wrong (the tool exits 2); `Remeshing_failure` and its
+ * `Convergence_failure`: a valid input this version cannot remesh (exit 3); `Internal_error`: a broken
+ * invariant of the library, a bug (exit 1); `Cancelled`: a visitor stopped the run.
  */
 
 /*!
@@ -93,7 +100,9 @@
 /*!
  * \defgroup PkgAnisoConformalConcepts Concepts
  * \ingroup PkgAnisoConformalRef
- * What a user type must provide to plug into the pipeline: a metric, a parametric domain, a visitor.
+ * What a user type must provide to plug into the pipeline: a metric (`AnisotropicMetric`), a
+ * parametric domain (`ParametricDomain`, with its `ParametricDomainTraits`), a visitor
+ * (`AnisoConformalVisitor`).
  */
 
 /*!

@@ -52,7 +52,7 @@ int main(int argc, char** argv)
     AC::Intrinsic_triangulation itri(ellipsoid, AC::compute_metric_square_roots(ellipsoid, metric));
     AC::adjust_edge_lengths(itri, ellipsoid, np);
     const AC::Spherical_embedding emb = AC::spherical_embedding(itri, np);
-    const AC::Spherical_domain_traits sphere(itri, emb);
+    AC::Spherical_domain_traits sphere(itri, emb);
     std::vector<AC::Spherical_domain_traits::Point> sites = sphere.initial_sites(a.vertices, 0u);
     AC::weighted_centroidal_Voronoi_tessellation(sphere, sites, sphere.number_of_fixed_sites(), np);
     const bool same = AC::extract_dual_mesh(ellipsoid, itri, sphere, sites).points == out.points;

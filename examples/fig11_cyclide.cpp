@@ -55,7 +55,7 @@ int main(int argc, char** argv)
     AC::Intrinsic_triangulation itri(cyclide, AC::compute_metric_square_roots(cyclide, metric));
     AC::adjust_edge_lengths(itri, cyclide, np);
     const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(itri, np);
-    const AC::Euclidean_periodic_domain_traits torus(itri, emb);
+    AC::Euclidean_periodic_domain_traits torus(itri, emb);
     std::vector<AC::Euclidean_periodic_domain_traits::Point> sites = torus.initial_sites(a.vertices, 0u);
     AC::weighted_centroidal_Voronoi_tessellation(torus, sites, torus.number_of_fixed_sites(), np);
     const bool same = AC::extract_dual_mesh(cyclide, itri, torus, sites).points == out.points;

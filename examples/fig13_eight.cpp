@@ -51,7 +51,7 @@ static AC::Quality_report run(const AC::Input_surface& surface, const std::strin
   AC::Intrinsic_triangulation itri(surface, AC::compute_metric_square_roots(surface, metric));
   AC::adjust_edge_lengths(itri, surface, np);
   const AC::Hyperbolic_embedding emb = AC::hyperbolic_embedding(itri, np);
-  const AC::Hyperbolic_klein_domain_traits disk(itri, emb);
+  AC::Hyperbolic_klein_domain_traits disk(itri, emb);
   std::vector<AC::Hyperbolic_klein_domain_traits::Point> sites = disk.initial_sites(n, 0u);
   AC::weighted_centroidal_Voronoi_tessellation(disk, sites, disk.number_of_fixed_sites(), np);
   const bool same = AC::extract_dual_mesh(surface, itri, disk, sites).points == out.points;

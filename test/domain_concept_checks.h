@@ -16,6 +16,7 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/parameters.h>
+#include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include <boost/test/unit_test.hpp>
 
@@ -85,6 +86,14 @@ void check_domain_concept(const Aniso_conformal::Input_surface& surface, const A
   // a Lloyd move stays in the domain
   for(std::size_t i = traits.number_of_fixed_sites(); i < n; ++i)
     BOOST_TEST(traits.contains(traits.move_towards(sites[i], cells[i].centroid)));
+
+  // a few CVT iterations lower the energy (the dual of random sites need not be a triangulation of the
+  // surface: on a thin torus two translates of a site can share a Delaunay triangle)
+  double before = 0;
+  for(const auto& c : cells) before += c.energy;
+  const AC::Cvt_report cvt = AC::weighted_centroidal_Voronoi_tessellation(traits, sites, traits.number_of_fixed_sites(),
+                                                                          AC::parameters::number_of_iterations(30u));
+  BOOST_TEST(cvt.energy.back() < before, name << ": the CVT did not lower the energy");
 
   // the dual: every site a vertex, indices in range; every site located on the background
   const std::vector<std::array<std::size_t, 3>> tris = traits.dual_triangles(sites);

@@ -20,20 +20,36 @@
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/make_image_background.h>
 #include <Aniso_conformal/make_square_background.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/Planar_domain.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include "mesh_checks.h"
 
+#include <nlohmann/json.hpp>
+#include <png.h>
+
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace AC = Aniso_conformal;
 
 namespace {
+
+// the pipeline in the plane: what remesh() runs for a disk (images, square backgrounds, the face mask)
+template <typename... Args>
+auto remesh_plane(Args&&... args) -> decltype(AC::remesh_in_domain<AC::Planar_domain>(std::forward<Args>(args)...))
+{
+  return AC::remesh_in_domain<AC::Planar_domain>(std::forward<Args>(args)...);
+}
 
 const std::string out_dir = ANISO_CONFORMAL_TEST_OUTPUT_DIR;
 const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
@@ -126,7 +142,7 @@ BOOST_AUTO_TEST_CASE(bundled_face_mask_remeshes_as_a_disk)
   o.stretch_max = 4;
   const AC::Curvature_metric metric(s, o);
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(std::size_t(250)));
+  const AC::Remeshed_surface out = remesh_plane(s, metric, r, AC::parameters::number_of_vertices(std::size_t(250)));
   BOOST_TEST(out.points.size() == 250u);
   BOOST_TEST(r.inverted_triangles == 0u);
   // one disk: Euler characteristic 1, one boundary loop made of the boundary sites
@@ -269,20 +285,39 @@ BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
   const AC::Image_metric metric(crop, 0.5);
   const AC::Input_surface bg = AC::make_image_background(crop);
   AC::Remeshing_result r;
-  const auto out = AC::remesh(bg, metric, r, AC::parameters::number_of_vertices(std::size_t(400)));
+  const auto out = remesh_plane(bg, metric, r, AC::parameters::number_of_vertices(std::size_t(400)));
   BOOST_TEST(out.points.size() == 400u);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.corners == 4u);
   BOOST_TEST(std::abs(test::count_mesh(out.points, out.faces).planar_area - 49.0 / 59.0) < 1e-9);
   BOOST_TEST(r.quality.G_avg > 0.75);
 
-  // the JSON report and the pictures are written and well formed
+  // the JSON report parses back with the result's figures and the extra fields
   std::ostringstream json;
-  AC::IO::write_report_json(json, r, {{"input_name", "\"crop\""}});
-  const std::string j = json.str();
-  for(const char* key : {"\"G_avg\"", "\"angle_histogram\"", "\"flips\"", "\"energy\"", "\"input_name\""})
-    BOOST_TEST(contains(j, key));
-  BOOST_TEST(std::count(j.begin(), j.end(), '{') == std::count(j.begin(), j.end(), '}'));
+  AC::IO::write_report_json(json, r, {{"input_name", "crop \"60 x 50\" \xff\x01"}, {"s", 0.5}});
+  const nlohmann::json j = nlohmann::json::parse(json.str());
+  BOOST_TEST(j.at("input_name") == "crop \"60 x 50\" \xef\xbf\xbd\x01");  // invalid UTF-8 replaced by U+FFFD
+  BOOST_TEST(j.at("s") == 0.5);
+  BOOST_TEST(j.at("domain") == "plane");
+  BOOST_TEST(j.at("input").at("vertices") == 3000);
+  BOOST_TEST(j.at("output").at("vertices") == 400);
+  BOOST_TEST(j.at("output").at("corners") == 4);
+  BOOST_TEST(j.at("output").at("boundary_vertices") == r.boundary_sites);
+  // reals with 10 significant digits, as the report always had
+  char g[32];
+  std::snprintf(g, sizeof(g), "%.10g", r.quality.G_avg);
+  BOOST_TEST(j.at("quality").at("G_avg").get<double>() == std::strtod(g, nullptr));
+  BOOST_TEST(std::abs(j.at("quality").at("G_avg").get<double>() - r.quality.G_avg) < 1e-9);
+  BOOST_TEST(j.at("quality").at("angle_histogram").at("counts").size() == r.quality.angle_histogram.size());
+  BOOST_TEST(j.at("edge_adjustment").at("splits") == r.adjustment.splits);
+  BOOST_TEST(j.at("edge_adjustment").at("flips") == r.adjustment.flips);
+  BOOST_TEST(j.at("conformal_embedding").at("intrinsic_flips") == r.conformal_flips);
+  BOOST_TEST(j.at("cvt").at("energy").size() == r.cvt.energy.size());
+  BOOST_TEST(j.at("cvt").at("iterations") == r.cvt.iterations);
+  BOOST_TEST(j.at("seconds").size() == std::size_t(AC::number_of_stages) + 1);
+  // the report's own keys cannot be overwritten, and extra fields must be an object
+  BOOST_TEST(contains(message_of([&] { AC::IO::write_report_json(json, r, {{"quality", 1}}); }), "'quality' is a field of the report"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::write_report_json(json, r, nlohmann::json::array({1, 2})); }), "must be a JSON object"));
   AC::IO::write_svg(out_dir + "/crop.svg", out.points, out.faces, r.quality.triangle_G, 0.5, 1.0, "crop & <test>");
   AC::IO::write_histogram_svg(out_dir + "/crop_hist.svg", r.quality.angle_histogram, r.quality.bin_width, "angles");
   std::ifstream svg(out_dir + "/crop.svg");
@@ -303,7 +338,7 @@ BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
   const AC::IO::Image ct = AC::IO::read_image(data_dir + "/images/ct_head_211.png");
   const AC::Image_metric metric(ct, 0.2);
   AC::Remeshing_result r;
-  const auto out = AC::remesh(AC::make_image_background(ct), metric, r, AC::parameters::number_of_vertices(std::size_t(1500)));
+  const auto out = remesh_plane(AC::make_image_background(ct), metric, r, AC::parameters::number_of_vertices(std::size_t(1500)));
   BOOST_TEST(out.points.size() == 1500u);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.conformal_flips > 0u);
@@ -313,7 +348,7 @@ BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
   // at the paper's s = 0.5 this slice cannot be remeshed well: a clear exception, never flat triangles
   bool refused = false;
   try {
-    AC::remesh(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
+    remesh_plane(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
                AC::parameters::number_of_vertices(std::size_t(3000)));
   } catch(const AC::Convergence_failure& e) {
     refused = std::string(e.what()).find("degenerate triangles") != std::string::npos && e.residual() > 0;
@@ -416,12 +451,188 @@ BOOST_AUTO_TEST_CASE(fuzz_regressions_images)
   BOOST_TEST(contains(image_error("ppm_pixels_allocated_before_size_check.ppm"), "truncated pixel data"));
   // width * height overflowed a long long (UBSan) for header values near 2^40 (PNM) and 2^32 (PNG)
   BOOST_TEST(contains(image_error("pgm_size_product_overflows.pgm"), "too large (1099511627775 x 1099511627775)"));
-  BOOST_TEST(contains(image_error("png_size_product_overflows.png"), "too large (4294967295 x 4294967295)"));
+  // (libpng refuses those PNG sizes itself, as larger than 2^31 - 1)
+  BOOST_TEST(contains(image_error("png_size_product_overflows.png"), "invalid PNG: PNG unsigned integer out of range"));
   // 16384 x 16384 RGBA 16 bits with 100 bytes of data: a 2 GB buffer before inflating them
   BOOST_TEST(contains(image_error("png_2_gb_buffer_for_100_bytes.png"), "corrupt or truncated PNG image data"));
+  // the fuzzer's input, a 68-byte file whose tEXt chunk declares 1.1 GB: libpng only warns that the chunk
+  // is above its 8 MB limit, then allocates it (libFuzzer out-of-memory); chunk lengths are checked first
+  BOOST_TEST(contains(image_error("png_text_chunk_of_1_gb.png"), "invalid PNG: chunk 'tEXt' of 1140850691 bytes runs past the end"));
+  // the same with the file ending right after the chunk's length and type (169 MB asked for)
+  BOOST_TEST(contains(image_error("png_text_chunk_header_at_the_end.png"), "chunk 'tEXt' of 169478656 bytes runs past the end"));
   BOOST_TEST(contains(message_of([] { AC::IO::read_image(write_file("big_ascii.pgm", "P2\n1000 1000\n255\n0 0 0\n")); }),
                       "truncated pixel data"));
   // exact sizes still read: binary data right after the single whitespace, ASCII without a final newline
   BOOST_TEST(AC::IO::read_image(write_file("exact.pgm", std::string("P5\n2 1\n255\n\x01\x02", 13))).width == 2);
   BOOST_TEST(AC::IO::read_image(write_file("exact_ascii.pgm", "P2\n2 1\n255\n1 2")).width == 2);
+}
+
+// ------------------------------------------------------------------------------------- PNG by libpng
+
+namespace {
+
+// the test's sample of channel c at (x, y) for a bit depth: every value of the depth appears
+unsigned test_sample(std::size_t x, std::size_t y, std::size_t c, int depth)
+{
+  return unsigned(x * 7 + y * 13 + c * 5 + x * y) % (1u << depth);
+}
+
+// writes a w x h PNG of the given colour type and bit depth with test_sample() values (palette images: the
+// index), Adam7-interlaced or not, with a gAMA and (where the colour type has none) a tRNS chunk that the
+// reader must ignore, and a tEXt chunk
+void write_test_png(const std::string& path, int w, int h, int color, int depth, bool interlaced, int palette_size = 0)
+{
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  BOOST_REQUIRE(f != nullptr);
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  BOOST_REQUIRE((png != nullptr && info != nullptr));
+  png_init_io(png, f);
+  png_set_IHDR(png, info, png_uint_32(w), png_uint_32(h), depth, color, interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  std::vector<png_color> palette;
+  for(int i = 0; i < palette_size; ++i)
+    palette.push_back(png_color{png_byte(37 * i % 256), png_byte(255 - i), png_byte(i * i % 256)});
+  if(color == PNG_COLOR_TYPE_PALETTE) {
+    png_set_PLTE(png, info, palette.data(), palette_size);
+    png_set_check_for_invalid_index(png, 0);  // out-of-range indices are written on purpose
+  }
+  png_set_gAMA(png, info, 0.7);
+  if(color == PNG_COLOR_TYPE_RGB || color == PNG_COLOR_TYPE_GRAY) {
+    png_color_16 transparent{};
+    png_set_tRNS(png, info, nullptr, 0, &transparent);
+  }
+  png_text text{};
+  text.compression = PNG_TEXT_COMPRESSION_NONE;
+  text.key = const_cast<char*>("Comment");
+  text.text = const_cast<char*>("a test image");
+  png_set_text(png, info, &text, 1);
+  png_write_info(png, info);
+  if(depth < 8) png_set_packing(png);
+  png_set_interlace_handling(png);
+  const std::size_t samples = std::size_t(png_get_channels(png, info)), bytes = depth == 16 ? 2 : 1;
+  std::vector<unsigned char> pixels(std::size_t(w) * std::size_t(h) * samples * bytes);
+  std::vector<png_bytep> rows;
+  for(std::size_t y = 0; y < std::size_t(h); ++y) {
+    rows.push_back(pixels.data() + y * std::size_t(w) * samples * bytes);
+    for(std::size_t x = 0; x < std::size_t(w); ++x)
+      for(std::size_t c = 0; c < samples; ++c) {
+        const unsigned v = test_sample(x, y, c, depth);
+        unsigned char* p = rows.back() + (x * samples + c) * bytes;
+        if(bytes == 2) { p[0] = static_cast<unsigned char>(v >> 8); p[1] = static_cast<unsigned char>(v & 0xff); }
+        else p[0] = static_cast<unsigned char>(v);
+      }
+  }
+  png_write_image(png, rows.data());
+  png_write_end(png, info);
+  png_destroy_write_struct(&png, &info);
+  std::fclose(f);
+}
+
+// the CRC-32 of PNG chunks (ISO 3309, as in the PNG specification's annex D)
+std::uint32_t crc32(const std::string& bytes)
+{
+  std::uint32_t c = 0xffffffffu;
+  for(const unsigned char b : bytes) {
+    c ^= b;
+    for(int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return ~c;
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(png_every_colour_type_bit_depth_and_interlacing)
+{
+  struct Kind { int color, depth; };
+  const Kind kinds[] = {{PNG_COLOR_TYPE_GRAY, 1}, {PNG_COLOR_TYPE_GRAY, 2}, {PNG_COLOR_TYPE_GRAY, 4}, {PNG_COLOR_TYPE_GRAY, 8},
+                        {PNG_COLOR_TYPE_GRAY, 16}, {PNG_COLOR_TYPE_GRAY_ALPHA, 8}, {PNG_COLOR_TYPE_GRAY_ALPHA, 16},
+                        {PNG_COLOR_TYPE_RGB, 8}, {PNG_COLOR_TYPE_RGB, 16}, {PNG_COLOR_TYPE_RGB_ALPHA, 8},
+                        {PNG_COLOR_TYPE_RGB_ALPHA, 16}, {PNG_COLOR_TYPE_PALETTE, 1}, {PNG_COLOR_TYPE_PALETTE, 2},
+                        {PNG_COLOR_TYPE_PALETTE, 4}, {PNG_COLOR_TYPE_PALETTE, 8}};
+  const int w = 13, h = 11;
+  for(const Kind& k : kinds)
+    for(const bool interlaced : {false, true}) {
+      const std::string path = out_dir + "/png_c" + std::to_string(k.color) + "_d" + std::to_string(k.depth) + (interlaced ? "_i" : "") + ".png";
+      const bool palette = k.color == PNG_COLOR_TYPE_PALETTE;
+      write_test_png(path, w, h, k.color, k.depth, interlaced, palette ? 1 << k.depth : 0);
+      const AC::IO::Image img = AC::IO::read_image(path);
+      BOOST_TEST_INFO(path);
+      BOOST_TEST(img.width == w);
+      BOOST_TEST(img.height == h);
+      BOOST_TEST(img.channels == ((k.color == PNG_COLOR_TYPE_GRAY || k.color == PNG_COLOR_TYPE_GRAY_ALPHA) ? 1 : 3));
+      BOOST_REQUIRE(img.data.size() == std::size_t(w * h * img.channels));
+      // each sample over the largest value of its depth, exactly as float(double / double); palette
+      // entries over 255; no gamma, no transparency, alpha dropped
+      bool exact = true;
+      const double maxv = double((1u << k.depth) - 1);
+      for(int y = 0; y < h; ++y)
+        for(int x = 0; x < w; ++x)
+          for(int c = 0; c < img.channels; ++c) {
+            float expected;
+            if(palette) {
+              const unsigned i = test_sample(std::size_t(x), std::size_t(y), 0, k.depth);
+              const int rgb[3] = {int(37 * i % 256), int(255 - i), int(i * i % 256)};
+              expected = float(rgb[c] / 255.0);
+            } else {
+              expected = float(test_sample(std::size_t(x), std::size_t(y), std::size_t(c), k.depth) / maxv);
+            }
+            exact = exact && img.at(x, y, c) == expected;
+          }
+      BOOST_TEST(exact);
+    }
+
+  // a palette index past the palette: refused, as by the hand-written decoder before libpng
+  write_test_png(out_dir + "/png_short_palette.png", w, h, PNG_COLOR_TYPE_PALETTE, 8, false, 20);
+  BOOST_TEST(contains(message_of([] { AC::IO::read_image(out_dir + "/png_short_palette.png"); }), "palette index out of range"));
+}
+
+BOOST_AUTO_TEST_CASE(png_errors_name_the_file_and_libpngs_reason_and_print_nothing)
+{
+  write_test_png(out_dir + "/png_good.png", 9, 7, PNG_COLOR_TYPE_RGB, 8, false);
+  std::ifstream in(out_dir + "/png_good.png", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t ihdr = bytes.find("IHDR"), text = bytes.find("tEXt"), idat = bytes.find("IDAT");
+  BOOST_REQUIRE((ihdr != std::string::npos && text != std::string::npos && idat != std::string::npos));
+
+  // libpng's warnings and errors go into the exception, never to stderr: stderr is a file meanwhile
+  const std::string err_path = out_dir + "/png_stderr.txt";
+  std::fflush(stderr);
+  const int saved = ::dup(2);
+  BOOST_REQUIRE(std::freopen(err_path.c_str(), "w", stderr) != nullptr);
+
+  // a bad CRC on an ancillary chunk: a warning, the chunk is skipped and the image read
+  std::string bad_text = bytes;
+  bad_text[text + 4 + 8 + 4] ^= 0x55;  // past "tEXt" and the keyword "Comment\0": in the text
+  bool read = false;
+  try {
+    const AC::IO::Image img = AC::IO::read_image(write_file("png_bad_text_crc.png", bad_text));
+    read = img.width == 9 && img.height == 7;
+  } catch(const AC::Error&) {
+  }
+  // a bad CRC on IHDR, a zero width, data cut short, no IEND: errors naming the file and the reason
+  std::string bad_ihdr = bytes;
+  bad_ihdr[ihdr + 4 + 12] ^= 0x01;  // the last byte of IHDR's data
+  const std::string crc = message_of([&] { AC::IO::read_image(write_file("png_bad_ihdr_crc.png", bad_ihdr)); });
+  std::string zero = bytes;
+  zero[ihdr + 4] = zero[ihdr + 5] = zero[ihdr + 6] = zero[ihdr + 7] = 0;
+  const std::uint32_t c = crc32(zero.substr(ihdr, 4 + 13));  // a valid CRC: the width is what is wrong
+  for(int i = 0; i < 4; ++i) zero[ihdr + 17 + std::size_t(i)] = char((c >> (24 - 8 * i)) & 0xff);
+  const std::string zero_width = message_of([&] { AC::IO::read_image(write_file("png_zero_width.png", zero)); });
+  const std::string no_end = message_of([&] { AC::IO::read_image(write_file("png_no_iend.png", bytes.substr(0, bytes.size() - 12))); });
+  const std::string cut = message_of([&] { AC::IO::read_image(write_file("png_cut.png", bytes.substr(0, idat + 10))); });
+
+  std::fflush(stderr);
+  ::dup2(saved, 2);
+  ::close(saved);
+  std::ifstream err(err_path);
+  const std::string printed((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  BOOST_TEST(printed.empty(), "printed: " << printed);
+
+  BOOST_TEST(read);
+  BOOST_TEST(contains(crc, "image " + out_dir + "/png_bad_ihdr_crc.png: invalid PNG: IHDR: CRC error"));
+  BOOST_TEST(contains(zero_width, "png_zero_width.png: invalid PNG: "));
+  BOOST_TEST(contains(zero_width, "width is zero"));
+  BOOST_TEST(contains(no_end, "png_no_iend.png: invalid PNG: the file ends before its IEND chunk"));
+  BOOST_TEST(contains(cut, "png_cut.png: invalid PNG: "));
 }

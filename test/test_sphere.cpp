@@ -17,11 +17,9 @@
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Curvature_metric.h>
-#include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
-#include <Aniso_conformal/Planar_domain_traits.h>
 #include <Aniso_conformal/Spherical_domain_traits.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/Uniform_metric.h>
@@ -29,10 +27,12 @@
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
 #include <Aniso_conformal/make_ellipsoid.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/Spherical_domain.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 #include <Aniso_conformal/spherical_embedding.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
+#include "domain_concept_checks.h"
 #include "mesh_checks.h"
 
 #include <Eigen/Geometry>
@@ -53,6 +53,14 @@
 namespace AC = Aniso_conformal;
 
 namespace {
+
+// the pipeline in the sphere: what remesh() runs for a closed surface of genus 0
+template <typename... Args>
+auto remesh_sphere(Args&&... args) -> decltype(AC::remesh_in_domain<AC::Spherical_domain>(std::forward<Args>(args)...))
+{
+  return AC::remesh_in_domain<AC::Spherical_domain>(std::forward<Args>(args)...);
+}
+
 
 const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
 
@@ -195,6 +203,11 @@ std::string message_of(const std::function<void()>& f)
 }
 
 } // namespace
+
+BOOST_AUTO_TEST_CASE(spherical_domain_models_its_concepts)
+{
+  test::check_domain_concept<AC::Spherical_domain>(AC::make_ellipsoid(3), AC::make_dupin_cyclide(24, 16), 200);
+}
 
 BOOST_AUTO_TEST_CASE(ellipsoid_generator_sizes_and_topology)
 {
@@ -446,7 +459,7 @@ BOOST_AUTO_TEST_CASE(fig10_ellipsoid_meets_the_quality_bar)
   co.stretch_max = 10;
   AC::Remeshing_result r;
   const AC::Remeshed_surface out =
-      AC::remesh(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1000)));
+      remesh_sphere(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1000)));
   check_sphere_output(s, out, 1000);
   BOOST_TEST((r.domain == AC::Parametric_domain::SPHERE));
   const AC::Quality_report& q = r.quality;
@@ -474,7 +487,7 @@ BOOST_AUTO_TEST_CASE(flatter_ellipsoid_realises_the_papers_stretch_range)
   BOOST_TEST(*std::max_element(ratios.begin(), ratios.end()) >= 9.9);
   BOOST_TEST(*std::min_element(ratios.begin(), ratios.end()) <= 1.1);
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(std::size_t(1000)));
+  const AC::Remeshed_surface out = remesh_sphere(s, metric, r, AC::parameters::number_of_vertices(std::size_t(1000)));
   check_sphere_output(s, out, 1000);
   const AC::Quality_report& q = r.quality;
   BOOST_TEST_MESSAGE("Fig. 10, stretch [1, 10]: G_min " << q.G_min << " G_avg " << q.G_avg << " theta_min " << q.theta_min
@@ -493,7 +506,7 @@ BOOST_AUTO_TEST_CASE(a_real_genus_zero_model_bear_at_two_sizes)
   const AC::Curvature_metric metric(s, co);
   for(std::size_t n : {std::size_t(1000), std::size_t(4000)}) {
     AC::Remeshing_result r;
-    const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(n));
+    const AC::Remeshed_surface out = remesh_sphere(s, metric, r, AC::parameters::number_of_vertices(n));
     check_sphere_output(s, out, n);
     BOOST_TEST_MESSAGE("bear " << n << ": G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg << " theta_min " << r.quality.theta_min
                                << " %<30 " << r.quality.percent_below_30 << " cf in [" << r.conformal_factor_min << ", "
@@ -504,6 +517,29 @@ BOOST_AUTO_TEST_CASE(a_real_genus_zero_model_bear_at_two_sizes)
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_twelve_triangle_cube_remeshes_to_two_thousand_vertices)
+{
+  // more output vertices than the input has: the background is refined on the cube's faces (issue 14)
+  const AC::Input_surface cube({{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+                               {{{0, 2, 1}}, {{0, 3, 2}}, {{4, 5, 6}}, {{4, 6, 7}}, {{0, 1, 5}}, {{0, 5, 4}}, {{1, 2, 6}}, {{1, 6, 5}},
+                                {{2, 3, 7}}, {{2, 7, 6}}, {{3, 0, 4}}, {{3, 4, 7}}});
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_sphere(cube, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(2000)));
+  BOOST_TEST(out.points.size() == 2000u);
+  BOOST_TEST(out.faces.size() == 3996u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.refinement.vertices_before == 8u);
+  BOOST_TEST(r.refinement.vertices_after >= 4000u);
+  // every output vertex lies on a face of the cube
+  double off = 0;
+  for(const auto& p : out.points) off = std::max(off, std::abs(p.cwiseAbs().maxCoeff() - 1));
+  BOOST_TEST(off < 1e-12);
+  BOOST_TEST(r.quality.G_avg >= 0.9);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+  BOOST_TEST_MESSAGE("cube to 2000: G_avg " << r.quality.G_avg << ", theta_min " << r.quality.theta_min << ", Hausdorff "
+                                             << r.hausdorff_distance_relative << " of the diagonal (corners rounded: issue 15)");
+}
+
 BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)
 {
   // the cow's legs and tail: the conformal map to the sphere shrinks them below double precision
@@ -511,7 +547,7 @@ BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)
   AC::Remeshing_result r;
   std::string m;
   try {
-    AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(500)));
+    remesh_sphere(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(500)));
     m = "(accepted)";
   } catch(const AC::Convergence_failure& e) {
     m = e.what();
@@ -554,7 +590,7 @@ BOOST_AUTO_TEST_CASE(thin_needles_pancakes_and_folds_are_refused_with_the_reason
     AC::Remeshing_result r;
     std::string m = "(accepted)";
     try {
-      AC::remesh(c.surface, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(300)));
+      remesh_sphere(c.surface, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(300)));
     } catch(const AC::Convergence_failure& e) {
       m = e.what();
     }
@@ -567,7 +603,7 @@ BOOST_AUTO_TEST_CASE(thin_needles_pancakes_and_folds_are_refused_with_the_reason
   const AC::Input_surface accepted_needle = AC::make_ellipsoid(4, 1, 0.1, 0.1);
   AC::Remeshing_result r;
   const AC::Remeshed_surface out =
-      AC::remesh(accepted_needle, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(300)));
+      remesh_sphere(accepted_needle, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(300)));
   check_sphere_output(accepted_needle, out, 300);
   BOOST_TEST(r.quality.G_avg > 0.85);
   BOOST_TEST(r.quality.theta_min > 20.0);
@@ -577,18 +613,13 @@ BOOST_AUTO_TEST_CASE(bad_genus_zero_inputs_name_the_problem)
 {
   const AC::Input_surface s = AC::make_ellipsoid(2);
   AC::Remeshing_result r;
-  // a domain that does not fit, both ways
-  BOOST_TEST(message_of([&] {
-               AC::remesh(s, AC::Uniform_metric(), r,
-                          AC::parameters::number_of_vertices(std::size_t(50)).parametric_domain(AC::Parametric_domain::FLAT_TORUS));
-             }).find("does not fit the input, which is a closed surface of genus 0") != std::string::npos);
+  // the sphere does not take a torus (the other domains' refusals: test_properties)
   const AC::Input_surface torus = AC::make_dupin_cyclide(24, 16);
   BOOST_TEST(message_of([&] {
-               AC::remesh(torus, AC::Uniform_metric(), r,
-                          AC::parameters::number_of_vertices(std::size_t(50)).parametric_domain(AC::Parametric_domain::SPHERE));
+               remesh_sphere(torus, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(50)));
              }).find("the sphere domain does not fit") != std::string::npos);
   // too few vertices
-  BOOST_TEST(message_of([&] { AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(3))); })
+  BOOST_TEST(message_of([&] { remesh_sphere(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(3))); })
                  .find("at least 4 output vertices") != std::string::npos);
   // the embedding on the wrong topology
   AC::Intrinsic_triangulation tt = background(torus, AC::Uniform_metric());
@@ -599,15 +630,14 @@ BOOST_AUTO_TEST_CASE(bad_genus_zero_inputs_name_the_problem)
   std::vector<Eigen::Vector3d> points = s.points();
   const AC::Input_surface holed(points, faces);
   BOOST_TEST(message_of([&] {
-               AC::remesh(holed, AC::Uniform_metric(), r,
-                          AC::parameters::number_of_vertices(std::size_t(50)).parametric_domain(AC::Parametric_domain::SPHERE));
+               remesh_sphere(holed, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(50)));
              }).find("does not fit the input, which is a topological disk") != std::string::npos);
   // a metric jumping by 1e8 between neighbours with a bounded Newton: a Convergence_failure, never garbage
   std::vector<Eigen::Matrix3d> wild(s.number_of_vertices(), Eigen::Matrix3d::Identity());
   for(std::size_t i = 0; i < wild.size(); i += 2) wild[i] *= 1e8;
   bool threw = false;
   try {
-    AC::remesh(s, AC::Tensor_field_metric(wild), r, AC::parameters::number_of_vertices(std::size_t(50)).max_conformal_iterations(2u));
+    remesh_sphere(s, AC::Tensor_field_metric(wild), r, AC::parameters::number_of_vertices(std::size_t(50)).max_conformal_iterations(2u));
   } catch(const AC::Convergence_failure&) {
     threw = true;
   }
@@ -713,10 +743,6 @@ std::pair<Point, Point> tangent_frame(const Point& x)
 // the optional hooks of the constrained CVT: found on the sphere, absent on the flat domains (whose CVT is unchanged)
 static_assert(AC::internal::Has_project_to_domain<Domain>::value, "the sphere retracts trial points");
 static_assert(AC::internal::Has_project_to_tangent_plane<Domain>::value, "the sphere projects gradients");
-static_assert(!AC::internal::Has_project_to_domain<AC::Planar_domain_traits>::value, "the plane has no hook");
-static_assert(!AC::internal::Has_project_to_tangent_plane<AC::Planar_domain_traits>::value, "the plane has no hook");
-static_assert(!AC::internal::Has_project_to_domain<AC::Euclidean_periodic_domain_traits>::value, "the torus has no hook");
-static_assert(!AC::internal::Has_project_to_tangent_plane<AC::Euclidean_periodic_domain_traits>::value, "the torus has no hook");
 
 } // namespace
 
@@ -830,7 +856,7 @@ BOOST_AUTO_TEST_CASE(cells_match_a_brute_force_quadrature)
 BOOST_AUTO_TEST_CASE(gradient_matches_finite_differences_along_tangents)
 {
   const Sphere_background bg(3, &graded);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const std::vector<Point> sites = d.initial_sites(120, 5);
   std::vector<Domain::Cell> cells;
   d.integrate(sites, cells);
@@ -856,7 +882,7 @@ BOOST_AUTO_TEST_CASE(gradient_matches_finite_differences_along_tangents)
 BOOST_AUTO_TEST_CASE(lloyd_and_lbfgs_give_uniform_cells_with_a_monotone_energy)
 {
   const Sphere_background bg(4, &uniform);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const std::size_t n = 300;
   const std::vector<Point> start = d.initial_sites(n, 1);
   for(const auto& p : start) BOOST_TEST(d.contains(p));
@@ -903,7 +929,7 @@ BOOST_AUTO_TEST_CASE(lloyd_and_lbfgs_give_uniform_cells_with_a_monotone_energy)
 BOOST_AUTO_TEST_CASE(a_graded_density_gives_cell_areas_following_rho_to_the_minus_one_half)
 {
   const Sphere_background bg(4, &graded), flat(4, &uniform);
-  const Domain d(bg.itri, bg.emb, 2), area_of(flat.itri, flat.emb, 2);
+  Domain d(bg.itri, bg.emb, 2), area_of(flat.itri, flat.emb, 2);
   std::vector<Point> x = d.initial_sites(400, 2);
   const AC::Cvt_report rep = AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(60u));
   BOOST_TEST(rep.energy.back() < rep.energy.front());
@@ -933,9 +959,9 @@ BOOST_AUTO_TEST_CASE(the_dual_is_a_closed_outward_genus_zero_surface)
 {
   // (with few sites the graded density's CVT leaves the south empty: all sites in one hemisphere, refused below)
   const Sphere_background bg(3, &graded), flat(3, &uniform);
-  const Domain graded_domain(bg.itri, bg.emb, 2), uniform_domain(flat.itri, flat.emb, 2);
+  Domain graded_domain(bg.itri, bg.emb, 2), uniform_domain(flat.itri, flat.emb, 2);
   for(std::size_t n : {4u, 5u, 37u, 250u}) {
-    const Domain& d = n < 10 ? uniform_domain : graded_domain;
+    Domain& d = n < 10 ? uniform_domain : graded_domain;
     std::vector<Point> x = d.initial_sites(n, 3);
     AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(10u));
     const auto tris = d.dual_triangles(x);
@@ -977,7 +1003,7 @@ BOOST_AUTO_TEST_CASE(the_dual_is_a_closed_outward_genus_zero_surface)
 BOOST_AUTO_TEST_CASE(background_location_gives_the_site_back)
 {
   const Sphere_background bg(3, &graded);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   std::vector<Point> probes = d.initial_sites(500, 4);
   const std::vector<Point> random = random_sites(500, 9);
   probes.insert(probes.end(), random.begin(), random.end());
@@ -1016,7 +1042,7 @@ BOOST_AUTO_TEST_CASE(background_location_gives_the_site_back)
 BOOST_AUTO_TEST_CASE(voronoi_cells_tile_the_sphere)
 {
   const Sphere_background bg(3, &uniform);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const std::vector<Point> x = d.initial_sites(150, 6);
   const auto cells = d.voronoi_cells(x);
   BOOST_TEST(cells.size() == x.size());
@@ -1041,7 +1067,7 @@ BOOST_AUTO_TEST_CASE(voronoi_cells_tile_the_sphere)
 BOOST_AUTO_TEST_CASE(degenerate_sites_and_inputs_name_the_problem)
 {
   const Sphere_background bg(3, &uniform);
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   auto message_of = [](auto&& f) -> std::string {
     try {
       f();
@@ -1120,7 +1146,7 @@ BOOST_AUTO_TEST_CASE(integration_time_on_a_fine_background)
   // 20480 chordal triangles, 1000 sites, 2 threads: the size of a 10k-vertex remesh to 1000 vertices
   const Sphere_background bg(5, &graded);
   auto t0 = std::chrono::steady_clock::now();
-  const Domain d(bg.itri, bg.emb, 2);
+  Domain d(bg.itri, bg.emb, 2);
   const double build = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::vector<Point> x = d.initial_sites(1000, 0);
   AC::weighted_centroidal_Voronoi_tessellation(d, x, 0, AC::parameters::number_of_iterations(5u));

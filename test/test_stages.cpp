@@ -22,6 +22,7 @@
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/refine_background.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include "mesh_checks.h"
@@ -222,6 +223,60 @@ BOOST_AUTO_TEST_CASE(metric_square_roots_and_their_errors)
 
 // ------------------------------------------------------------------ intrinsic triangulation
 
+// --------------------------------------------------------------------------- background refinement
+
+BOOST_AUTO_TEST_CASE(refinement_carries_the_requested_size_on_the_input_faces)
+{
+  // a coarse curved patch (5 x 5 grid) and a metric that varies: refined for 400 output vertices
+  const AC::Input_surface s = grid_surface(5, 5, [](double u, double v) { return Eigen::Vector3d(u, v, 0.4 * u * v); });
+  const auto metric = AC::make_analytic_metric_2([](double x, double) {
+    return Eigen::Matrix2d(Eigen::Vector2d(1 + 8 * x, 1).asDiagonal());
+  });
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, metric));
+  double min_angle_before = 1e9;
+  for(std::size_t f = 0; f < s.number_of_faces(); ++f) {
+    bool d;
+    const auto& c = s.faces()[f];
+    const auto a = AC::internal::corner_angles({{(s.points()[c[1]] - s.points()[c[0]]).norm(), (s.points()[c[2]] - s.points()[c[1]]).norm(),
+                                                 (s.points()[c[0]] - s.points()[c[2]]).norm()}},
+                                               d);
+    min_angle_before = std::min({min_angle_before, a[0], a[1], a[2]});
+  }
+  const AC::Refinement_report r = AC::refine_background(t, s, metric, 400);
+  t.validate(true);
+  BOOST_TEST(r.vertices_before == s.number_of_vertices());
+  BOOST_TEST(r.vertices_after == t.number_of_vertices());
+  BOOST_TEST(r.vertices_after >= 800u);  // at least twice the output
+  BOOST_TEST(r.splits == r.vertices_after - r.vertices_before);
+  BOOST_TEST(r.longest_edge <= 2 * r.output_edge_length);
+  for(std::size_t v = 0; v < t.number_of_vertices(); ++v) {
+    // every vertex is a point of the input: its position is its barycentric combination on an input face
+    const AC::Surface_point& p = t.point(int(v));
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for(int k = 0; k < 3; ++k) x += p.barycentric[k] * s.points()[p.vertices[k]];
+    BOOST_TEST((x - p.position).norm() < 1e-12);
+    // and its metric is evaluated there, not averaged: Q = M^(1/2) with M = diag(1 + 8 x, 1) in the plane
+    // of the patch's parameters (the analytic metric reads x, y)
+    BOOST_TEST(std::abs(t.Q(int(v))(0, 0) - std::sqrt(1 + 8 * p.position.x())) < 1e-9);
+  }
+  // longest-edge bisection (Rivara): in a uniform metric the split edge is the longest of both its
+  // triangles, so the smallest angle at most halves
+  AC::Intrinsic_triangulation u(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::refine_background(u, s, AC::Uniform_metric(), 400);
+  double min_angle_after = 1e9;
+  for(std::size_t f = 0; f < u.number_of_faces(); ++f) {
+    bool d;
+    const auto a = AC::internal::corner_angles({{u.length(int(3 * f)), u.length(int(3 * f + 1)), u.length(int(3 * f + 2))}}, d);
+    min_angle_after = std::min({min_angle_after, a[0], a[1], a[2]});
+  }
+  BOOST_TEST(min_angle_after >= 0.5 * min_angle_before - 1e-12, "smallest angle " << min_angle_after << " of " << min_angle_before);
+  // a background that already carries the request is left alone
+  AC::Intrinsic_triangulation fine = t;
+  const AC::Refinement_report again = AC::refine_background(fine, s, metric, 100);
+  BOOST_TEST(again.splits == 0u);
+  BOOST_TEST(fine.number_of_vertices() == t.number_of_vertices());
+}
+
 BOOST_AUTO_TEST_CASE(intrinsic_flips_and_splits_keep_the_mesh_valid)
 {
   const AC::Input_surface sq = grid_surface(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
@@ -411,10 +466,7 @@ BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)
   const AC::Planar_embedding emb = AC::conformal_embedding(t);
   AC::Planar_domain_traits domain(t, emb);
 
-  double adjusted_area = 0;
-  for(std::size_t f = 0; f < t.number_of_faces(); ++f)
-    adjusted_area += AC::internal::heron_area(t.length(int(3 * f)), t.length(int(3 * f + 1)), t.length(int(3 * f + 2)));
-  std::vector<AC::Planar_domain_traits::Point> sites = domain.initial_sites(150, 7, adjusted_area);
+  std::vector<AC::Planar_domain_traits::Point> sites = domain.initial_sites(150, 7);
   BOOST_REQUIRE(sites.size() == 150u);
   const std::size_t fixed = domain.number_of_fixed_sites();
   BOOST_TEST(fixed >= 4u);
@@ -483,6 +535,10 @@ BOOST_AUTO_TEST_CASE(conformal_flip_budget_is_enforced)
 }
 
 // ----------------------------------------------------------------------------------- quality
+
+// the plane has none of the optional hooks of a curved domain: its CVT is the unconstrained one
+static_assert(!AC::internal::Has_project_to_domain<AC::Planar_domain_traits>::value, "the plane has no hook");
+static_assert(!AC::internal::Has_project_to_tangent_plane<AC::Planar_domain_traits>::value, "the plane has no hook");
 
 BOOST_AUTO_TEST_CASE(quality_is_measured_in_the_metric)
 {

@@ -17,12 +17,14 @@
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/flat_torus_embedding.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/Flat_torus_domain.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include "domain_concept_checks.h"
 #include "mesh_checks.h"
 
 #include <algorithm>
@@ -32,11 +34,20 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <utility>
 
 namespace AC = Aniso_conformal;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 
 namespace {
+
+// the pipeline in the flat torus: what remesh() runs for a closed surface of genus 1
+template <typename... Args>
+auto remesh_torus(Args&&... args) -> decltype(AC::remesh_in_domain<AC::Flat_torus_domain>(std::forward<Args>(args)...))
+{
+  return AC::remesh_in_domain<AC::Flat_torus_domain>(std::forward<Args>(args)...);
+}
+
 
 const double pi = 3.14159265358979323846;
 
@@ -75,6 +86,17 @@ void check_torus_output(const AC::Remeshed_surface& out, std::size_t n)
 }
 
 } // namespace
+
+BOOST_AUTO_TEST_CASE(flat_torus_domain_models_its_concepts)
+{
+  const AC::Input_surface octahedron = AC::Input_surface({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                                           {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}}, {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}});
+  test::check_domain_concept<AC::Flat_torus_domain>(AC::make_dupin_cyclide(24, 16), octahedron, 200);
+}
+
+// the flat torus has none of the optional hooks of a curved domain: its CVT is the unconstrained one
+static_assert(!AC::internal::Has_project_to_domain<AC::Euclidean_periodic_domain_traits>::value, "the torus has no hook");
+static_assert(!AC::internal::Has_project_to_tangent_plane<AC::Euclidean_periodic_domain_traits>::value, "the torus has no hook");
 
 BOOST_AUTO_TEST_CASE(tree_cotree_gives_two_generators_whose_loops_close)
 {
@@ -177,7 +199,7 @@ BOOST_AUTO_TEST_CASE(periodic_cvt_integrates_exactly_and_its_dual_is_a_torus)
   const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
   AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
   const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
-  const AC::Euclidean_periodic_domain_traits domain(t, emb, 2);
+  AC::Euclidean_periodic_domain_traits domain(t, emb, 2);
   const std::size_t n = 150;
   std::vector<Eigen::Vector2d> sites = domain.initial_sites(n, 3);
   for(const auto& p : sites) {
@@ -256,7 +278,7 @@ BOOST_AUTO_TEST_CASE(table2_cyclide_meets_the_quality_bar)
   co.stretch_max = 29;
   const AC::Curvature_metric metric(s, co);
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(std::size_t(8000)));
+  const AC::Remeshed_surface out = remesh_torus(s, metric, r, AC::parameters::number_of_vertices(std::size_t(8000)));
   check_torus_output(out, 8000);
   BOOST_TEST((r.domain == AC::Parametric_domain::FLAT_TORUS));
   const AC::Quality_report& q = r.quality;
@@ -298,7 +320,7 @@ BOOST_AUTO_TEST_CASE(high_stretch_embeds_with_intrinsic_flips)
   co.smoothing_iterations = 10;
   AC::Remeshing_result r;
   const AC::Remeshed_surface out =
-      AC::remesh(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1500)).random_seed(4u));
+      remesh_torus(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1500)).random_seed(4u));
   check_torus_output(out, 1500);
   BOOST_TEST(r.quality.G_avg >= 0.85);
   BOOST_TEST(r.quality.theta_min >= 15.0);
@@ -311,13 +333,13 @@ BOOST_AUTO_TEST_CASE(surface_mesh_entry_point_and_determinism)
   std::vector<CGAL::Surface_mesh<K::Point_3>::Vertex_index> v;
   for(const auto& p : s.points()) v.push_back(in.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
   for(const auto& f : s.faces()) in.add_face(v[f[0]], v[f[1]], v[f[2]]);
-  const AC::Remeshing_result r = AC::remesh(in, AC::Uniform_metric(), out, AC::parameters::number_of_vertices(std::size_t(400)));
+  const AC::Remeshing_result r = remesh_torus(in, AC::Uniform_metric(), out, AC::parameters::number_of_vertices(std::size_t(400)));
   BOOST_TEST(num_vertices(out) == 400u);
   BOOST_TEST(CGAL::is_closed(out));
   BOOST_TEST(CGAL::is_triangle_mesh(out));
   BOOST_TEST(int(num_vertices(out)) - int(num_edges(out)) + int(num_faces(out)) == 0);
   BOOST_TEST(r.quality.G_avg > 0.9);
-  AC::remesh(in, AC::Uniform_metric(), out2, AC::parameters::number_of_vertices(std::size_t(400)));
+  remesh_torus(in, AC::Uniform_metric(), out2, AC::parameters::number_of_vertices(std::size_t(400)));
   bool same = true;
   for(auto vd : vertices(out)) same = same && out.point(vd) == out2.point(vd);
   BOOST_TEST(same);
@@ -334,24 +356,21 @@ BOOST_AUTO_TEST_CASE(bad_genus_one_inputs_name_the_problem)
     }
     return "";
   };
-  auto remesh_with = [&](const AC::Input_surface& in, std::size_t n, AC::Parametric_domain d) {
+  auto remesh_with = [&](const AC::Input_surface& in, std::size_t n) {
     AC::Remeshing_result r;
-    AC::remesh(in, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).parametric_domain(d));
+    remesh_torus(in, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
   };
-  // a domain that does not fit the topology
-  std::string m = message_of([&] { remesh_with(s, 100, AC::Parametric_domain::PLANE); });
-  BOOST_TEST(m.find("plane domain does not fit") != std::string::npos);
-  BOOST_TEST(m.find("genus 1") != std::string::npos);
+  // the flat torus does not take a disk, nor a genus-1 surface with a boundary (the other domains'
+  // refusals: test_properties)
   const AC::Input_surface disk({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(1, 1, 0)},
                                {{{0, 1, 2}}, {{1, 3, 2}}});
-  m = message_of([&] { remesh_with(disk, 3, AC::Parametric_domain::FLAT_TORUS); });
+  std::string m = message_of([&] { remesh_with(disk, 3); });
   BOOST_TEST(m.find("flat-torus domain does not fit") != std::string::npos);
-  // genus 1 with a boundary: one face removed
   std::vector<AC::Input_surface::Face> holed(s.faces().begin() + 1, s.faces().end());
-  m = message_of([&] { remesh_with(AC::Input_surface(s.points(), holed), 100, AC::Parametric_domain::AUTOMATIC); });
+  m = message_of([&] { remesh_with(AC::Input_surface(s.points(), holed), 100); });
   BOOST_TEST(m.find("genus 1 with 1 boundary loops") != std::string::npos);
   // too few vertices for a torus
-  m = message_of([&] { remesh_with(s, 6, AC::Parametric_domain::AUTOMATIC); });
+  m = message_of([&] { remesh_with(s, 6); });
   BOOST_TEST(m.find("at least 7") != std::string::npos);
   // two disjoint tori, a non-manifold vertex (two tori glued at one vertex)
   std::vector<Eigen::Vector3d> two = s.points();
@@ -377,7 +396,7 @@ BOOST_AUTO_TEST_CASE(bad_genus_one_inputs_name_the_problem)
   nan_field[5](0, 0) = std::numeric_limits<double>::quiet_NaN();
   m = message_of([&] {
     AC::Remeshing_result r;
-    AC::remesh(s, AC::Tensor_field_metric(nan_field), r, AC::parameters::number_of_vertices(std::size_t(100)));
+    remesh_torus(s, AC::Tensor_field_metric(nan_field), r, AC::parameters::number_of_vertices(std::size_t(100)));
   });
   BOOST_TEST(m.find("vertex 5") != std::string::npos);
   // a metric too wild for the background: a 1e8 jump between neighbouring vertices, a tight Newton bound
@@ -385,12 +404,27 @@ BOOST_AUTO_TEST_CASE(bad_genus_one_inputs_name_the_problem)
   for(std::size_t i = 0; i < nv; i += 2) wild[i] *= 1e8;
   try {
     AC::Remeshing_result r;
-    AC::remesh(s, AC::Tensor_field_metric(wild), r, AC::parameters::number_of_vertices(std::size_t(100)).max_conformal_iterations(2u));
+    remesh_torus(s, AC::Tensor_field_metric(wild), r, AC::parameters::number_of_vertices(std::size_t(100)).max_conformal_iterations(2u));
     BOOST_FAIL("a wild metric with 2 Newton iterations was accepted");
   } catch(const AC::Convergence_failure& e) {
     BOOST_TEST_MESSAGE("wild metric: " << e.what());
     BOOST_TEST(e.residual() > 0);
   }
+}
+
+BOOST_AUTO_TEST_CASE(a_coarse_torus_remeshes_to_ten_times_its_vertices)
+{
+  // 96 input vertices, 1000 output vertices: the background is refined on the input's faces (issue 14)
+  const AC::Input_surface s = AC::make_dupin_cyclide(12, 8);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_torus(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000)));
+  BOOST_TEST(out.points.size() == 1000u);
+  BOOST_TEST(out.faces.size() == 2000u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.refinement.vertices_after >= 2000u);
+  BOOST_TEST(r.quality.G_avg >= 0.9);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+  BOOST_TEST_MESSAGE("coarse cyclide to 1000: G_avg " << r.quality.G_avg << ", theta_min " << r.quality.theta_min);
 }
 
 BOOST_AUTO_TEST_CASE(a_real_genus_one_model_knot1)
@@ -402,7 +436,7 @@ BOOST_AUTO_TEST_CASE(a_real_genus_one_model_knot1)
   co.stretch_max = 5;
   AC::Remeshing_result r;
   const AC::Remeshed_surface out =
-      AC::remesh(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1000)));
+      remesh_torus(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1000)));
   check_torus_output(out, 1000);
   BOOST_TEST(r.quality.G_avg >= 0.90);
   BOOST_TEST(r.quality.theta_min >= 25.0);
@@ -414,7 +448,7 @@ BOOST_AUTO_TEST_CASE(pictures_of_the_periodic_cvt_and_of_a_curved_mesh)
   const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
   AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
   const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
-  const AC::Euclidean_periodic_domain_traits domain(t, emb, 1);
+  AC::Euclidean_periodic_domain_traits domain(t, emb, 1);
   const std::vector<Eigen::Vector2d> sites = domain.initial_sites(200, 0);
   const auto cells = domain.voronoi_cells(sites);
   BOOST_TEST(cells.size() == sites.size());

@@ -17,6 +17,7 @@
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/make_image_background.h>
 #include <Aniso_conformal/make_square_background.h>
+#include <Aniso_conformal/internal/printable.h>
 #include <Aniso_conformal/remesh.h>
 
 #include <chrono>
@@ -25,6 +26,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <new>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -97,15 +99,16 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::ofstream f(p);
       if(!f) throw AC::Invalid_input("cannot write " + o.report);
       AC::IO::write_report_json(f, result,
-                                {{"input_name", AC::IO::internal::json_string(input_name)},
-                                 {"requested_vertices", std::to_string(o.vertices)},
-                                 {"seed", std::to_string(o.seed)},
-                                 {"background_seconds", AC::IO::internal::json_number(background_seconds)}});
+                                {{"input_name", input_name},
+                                 {"requested_vertices", o.vertices},
+                                 {"seed", o.seed},
+                                 {"background_seconds", AC::IO::internal::report_number(background_seconds)}});
       if(!f) throw AC::Invalid_input("cannot write " + o.report);
     });
   if(!o.svg.empty())
     write_atomically(o.svg, [&](const std::string& p) {
-      const std::string title = input_name + ": " + std::to_string(out.points.size()) + " vertices, quality G in the metric";
+      const std::string title =
+        AC::internal::printable(input_name) + ": " + std::to_string(out.points.size()) + " vertices, quality G in the metric";
       if(surface.is_planar())
         AC::IO::write_svg(p, out.points, out.faces, result.quality.triangle_G, 0.5, 1.0, title);
       else  // a curved surface: shaded, seen from an oblique direction
@@ -115,13 +118,16 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
   if(!o.histogram.empty())
     write_atomically(o.histogram, [&](const std::string& p) {
       AC::IO::write_histogram_svg(p, result.quality.angle_histogram, result.quality.bin_width,
-                                  input_name + ": angles in the metric");
+                                  AC::internal::printable(input_name) + ": angles in the metric");
     });
 
   if(!o.quiet) {
     const AC::Quality_report& q = result.quality;
-    std::printf("input        %s: %zu vertices, %zu faces (background %zu vertices)\n", input_name.c_str(),
+    std::printf("input        %s: %zu vertices, %zu faces (background %zu vertices", AC::internal::printable(input_name).c_str(),
                 result.input_vertices, result.input_faces, result.background_vertices);
+    if(result.refinement.splits > 0)
+      std::printf(", refined from %zu by %zu edge splits", result.refinement.vertices_before, result.refinement.splits);
+    std::printf(")\n");
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
                 AC::domain_name(result.domain));
@@ -150,8 +156,8 @@ int main_impl(int argc, char** argv)
 {
   std::vector<std::string> args(argv + 1, argv + argc);
   const aniso_remesh::Options o = aniso_remesh::parse_command_line(args);
-  if(o.help) { std::fputs(aniso_remesh::usage(), stdout); return 0; }
-  if(o.version) { std::puts("aniso_remesh (Aniso_conformal) 0.1.0"); return 0; }
+  if(o.help) { std::fputs(aniso_remesh::usage().c_str(), stdout); return 0; }
+  if(o.version) { std::puts(aniso_remesh::version_line()); return 0; }
 
   const auto t0 = std::chrono::steady_clock::now();
   auto since = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
@@ -190,21 +196,40 @@ int main_impl(int argc, char** argv)
   return run(o, surface, AC::Uniform_metric(), 0.0, o.input);
 }
 
+// Every message goes through printable(): a path or a token quoted from a file may hold any byte.
+void print_error(const char* kind, const std::string& message)
+{
+  std::fprintf(stderr, "aniso_remesh: %s: %s\n", kind, AC::internal::printable(message).c_str());
+}
+
 } // namespace
 
+// The exit status (documented in --help, the README and the manual, "Errors"): 0 success; 2 the input is
+// wrong; 3 a valid input this version cannot remesh; 1 anything else (a bug, cancelled, out of memory).
 int main(int argc, char** argv)
 {
   try {
     return main_impl(argc, argv);
   } catch(const AC::Invalid_input& e) {
-    std::fprintf(stderr, "aniso_remesh: error: %s\n", e.what());
+    print_error("error", e.what());
     return 2;
-  } catch(const AC::Convergence_failure& e) {
-    // in practice a metric too wild for the input's resolution: an input problem, named in the message
-    std::fprintf(stderr, "aniso_remesh: error: cannot remesh: %s\n", e.what());
-    return 2;
+  } catch(const AC::Remeshing_failure& e) {  // and its Convergence_failure
+    print_error("cannot remesh", e.what());
+    return 3;
+  } catch(const AC::Internal_error& e) {
+    print_error("internal error (please report it)", e.what());
+    return 1;
+  } catch(const AC::Cancelled& e) {
+    print_error("cancelled", e.what());
+    return 1;
+  } catch(const std::bad_alloc&) {
+    print_error("error", "out of memory");
+    return 1;
   } catch(const std::exception& e) {
-    std::fprintf(stderr, "aniso_remesh: internal error: %s\n", e.what());
+    print_error("internal error (please report it)", e.what());
+    return 1;
+  } catch(...) {
+    print_error("internal error (please report it)", "an exception of unknown type");
     return 1;
   }
 }

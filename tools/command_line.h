@@ -2,6 +2,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Command-line parsing of aniso_remesh, kept apart from main() so that it is tested (and fuzzed) alone.
+// The options, the help text and the checks that concern one option or a pair of options (ranges, names,
+// exclusions, requirements) are CLI11's (CLI11 2.1, Debian's libcli11-dev); what CLI11 cannot say (--domain
+// square is an input while --domain plane names the domain of --input, a background size that applies to
+// the square only) is checked after it.
 
 #ifndef ANISO_CONFORMAL_TOOLS_COMMAND_LINE_H
 #define ANISO_CONFORMAL_TOOLS_COMMAND_LINE_H
@@ -9,9 +13,15 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/parameters.h>
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
+#include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -28,7 +38,7 @@ struct Options {
   double stretch_max = 10;
   int smoothing_iterations = 10;
   int smoothing_rings = 2;
-  double anisotropy = -1;   // image only; default 0.1 colour, 0.2 grey
+  double anisotropy = -1;   // image only; default (-1) 0.1 colour, 0.2 grey
   // remeshing
   long long vertices = -1;
   long long iterations = 100;
@@ -42,140 +52,265 @@ struct Options {
   bool quiet = false, help = false, version = false;
 };
 
-inline const char* usage()
-{
-  return "usage: aniso_remesh (--input FILE | --domain square | --image FILE) --vertices N [options]\n"
-         "\n"
-         "input (one of):\n"
-         "  --input FILE              triangle mesh .off/.obj/.ply: a disk-topology surface (or planar with z = 0),\n"
-         "                            or a closed surface of any genus\n"
-         "  --domain square           the unit square; the tool builds a background resolving the metric\n"
-         "  --image FILE              PNG or PPM/PGM image; the domain is the image rectangle scaled to unit width\n"
-         "metric (one of):\n"
-         "  --metric-file FILE        one tensor per input vertex: first line the count, then m11 m12 m13 m22 m23 m33\n"
-         "  --metric NAME             curvature | fig6 | fig7 | isotropic (default: isotropic; images use their colours)\n"
-         "  --stretch-max R           curvature metric: bound on the stretch ratio (default 10)\n"
-         "  --smoothing-iterations K  curvature metric: smoothing rounds (default 10)\n"
-         "  --smoothing-rings R       curvature metric: neighbourhood rings of the smoothing (default 2)\n"
-         "  --anisotropy S            image metric: colour weight s of the paper's eq. 9 (default 0.1 colour, 0.2 grey)\n"
-         "remeshing:\n"
-         "  --domain NAME             with --input: plane | sphere | flat-torus | hyperbolic (default: from the topology; a domain\n"
-         "                            that does not fit the input's topology is refused)\n"
-         "  --vertices N              number of output vertices (required)\n"
-         "  --iterations K            CVT iterations (default 100)\n"
-         "  --seed S                  seed of the initial sites (default 0; same seed, same output)\n"
-         "  --cvt lloyd|lbfgs         CVT optimiser (default lbfgs)\n"
-         "  --background-vertices N   size of the background built for --domain square (default: automatic)\n"
-         "  --corner-angle DEG        boundary turning angle above which a vertex is kept as a corner (default 30)\n"
-         "  --threads T               worker threads of the CVT (default: all cores)\n"
-         "outputs:\n"
-         "  --output FILE             the mesh (.off/.obj/.ply)\n"
-         "  --report FILE.json        quality, solver figures, CVT energies and stage timings\n"
-         "  --svg FILE.svg            picture of the output (a curved one shaded), triangles coloured by quality G\n"
-         "  --histogram FILE.svg      angle histogram\n"
-         "  --quiet                   no summary on stdout\n"
-         "  --help, --version\n"
-         "\n"
-         "exit status: 0 success, 2 bad input (the message names the problem), 1 internal failure\n";
-}
+/// the tool's version line, printed by --version
+inline const char* version_line() { return "aniso_remesh (Aniso_conformal) 0.1.0"; }
 
 namespace detail {
-inline double to_double(const std::string& opt, const std::string& v)
+
+// CLI11 2.1 reads integers with strtoll(s, 0, 0), so "010" would be octal and "0x10" hexadecimal. The tool
+// takes decimal integers only, as it always did: this transform refuses anything else and drops leading
+// zeros, so that the CLI::Range check and the conversion after it both read the decimal value.
+inline CLI::Validator decimal_integer()
+{
+  return CLI::Validator(
+    [](std::string& s) -> std::string {
+      const std::size_t sign = (!s.empty() && (s[0] == '+' || s[0] == '-')) ? 1 : 0;
+      if(s.size() == sign || s.find_first_not_of("0123456789", sign) != std::string::npos)
+        return "'" + s + "' is not an integer";
+      const std::size_t first = std::min(s.find_first_not_of('0', sign), s.size() - 1);
+      s = (s[0] == '-' ? "-" : "") + s.substr(first);
+      return std::string();
+    },
+    "", "decimal integer");
+}
+
+// CLI11 2.1 reads floating-point values with strtold and rounds the long double to double: twice rounded,
+// one decimal in 50000 ("0.002877") comes out one ulp away from strtod's correctly rounded value. Real
+// options are therefore kept as text by CLI11 and converted here, with strtod, after this check.
+inline bool to_double(const std::string& s, double& x)
 {
   errno = 0;
   char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if(v.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
-    throw Aniso_conformal::Invalid_input("option " + opt + ": '" + v + "' is not a finite number");
-  return x;
+  x = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && errno != ERANGE && std::isfinite(x);
 }
-inline long long to_integer(const std::string& opt, const std::string& v, long long lo, long long hi)
+
+// a finite real number for which `ok` holds; `requirement` completes "must be ..." in the message
+inline CLI::Validator real(const std::string& requirement, std::function<bool(double)> ok)
 {
-  errno = 0;
-  char* end = nullptr;
-  const long long x = std::strtoll(v.c_str(), &end, 10);
-  if(v.empty() || *end != '\0' || errno == ERANGE)
-    throw Aniso_conformal::Invalid_input("option " + opt + ": '" + v + "' is not an integer");
-  if(x < lo || x > hi)
-    throw Aniso_conformal::Invalid_input("option " + opt + ": " + v + " is out of range [" + std::to_string(lo) + ", " +
-                                         std::to_string(hi) + "]");
-  return x;
+  return CLI::Validator(
+    [requirement, ok](std::string& s) -> std::string {
+      double x = 0;
+      if(!to_double(s, x)) return "'" + s + "' is not a finite number";
+      if(!ok(x)) return "must be " + requirement + ", not " + s;
+      return std::string();
+    },
+    "", "real " + requirement);
 }
+
+// a real option that CLI11 checks (as text, with `check`) and that is stored in `target` with strtod
+inline CLI::Option* add_real(CLI::App& app, const std::string& name, double& target, const std::string& type,
+                             const std::string& description, const CLI::Validator& check)
+{
+  return app
+    .add_option_function<std::string>(
+      name, [&target](const std::string& s) { to_double(s, target); }, description)
+    ->type_name(type)
+    ->check(check);
+}
+
+// CLI11's help with our usage line in place of its generic "Usage: aniso_remesh [OPTIONS]", and the
+// options an option needs or excludes sorted by name: CLI11 2.1 lists them in the order of their
+// addresses, so its help text would change from run to run
+class Help_formatter : public CLI::Formatter {
+public:
+  std::string make_usage(const CLI::App*, std::string) const override
+  {
+    return "usage: aniso_remesh (--input FILE | --domain square | --image FILE) --vertices N [options]\n";
+  }
+  std::string make_option_opts(const CLI::Option* opt) const override
+  {
+    std::string s = CLI::Formatter::make_option_opts(opt);
+    const std::size_t cut = std::min(s.find(" " + get_label("Needs") + ":"), s.find(" " + get_label("Excludes") + ":"));
+    if(cut == std::string::npos) return s;
+    s.erase(cut);
+    auto names = [](const std::set<CLI::Option*>& options) {
+      std::vector<std::string> n;
+      for(const CLI::Option* o : options) n.push_back(o->get_name());
+      std::sort(n.begin(), n.end());
+      std::string list;
+      for(const std::string& x : n) list += " " + x;
+      return list;
+    };
+    if(!opt->get_needs().empty()) s += " " + get_label("Needs") + ":" + names(opt->get_needs());
+    if(!opt->get_excludes().empty()) s += " " + get_label("Excludes") + ":" + names(opt->get_excludes());
+    return s;
+  }
+};
+
+// Declares every option of the tool on `app`, storing into `o`.
+inline void declare_options(CLI::App& app, Options& o)
+{
+  app.name("aniso_remesh");
+  app.description("aniso_remesh: remeshes a triangulated surface, the unit square or an image into an anisotropic "
+                  "triangle mesh of N vertices following a Riemannian metric (Zhong, Shuai, Jin and Guo, Anisotropic "
+                  "surface meshing with conformal embedding, Graphical Models 2014). The manual: doc/manual.md.");
+  app.formatter(std::make_shared<Help_formatter>());
+  app.footer("exit status:\n"
+             "  0  success\n"
+             "  1  internal failure (a bug: please report it), or cancelled\n"
+             "  2  bad input: the command line, a file, the metric or a vertex count is wrong (the message names it)\n"
+             "  3  valid input that this version cannot remesh (a topology without a domain, more vertices than the\n"
+             "     background carries, a metric too wild for the input's resolution); the message says what was reached");
+  // --help and --version act as soon as they are read, before any other option is checked (CLI11's own
+  // help flag would wait for the values of the others to be validated)
+  app.set_help_flag();
+  app.add_flag_callback("-h,--help", [] { throw CLI::CallForHelp(); }, "print this help and exit")->trigger_on_parse();
+  app.set_version_flag("--version", version_line(), "print the version and exit")->trigger_on_parse();
+  // a repeated option keeps its last value, as it always did
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+
+  const std::string in = "input (exactly one of --input, --image, --domain square)";
+  CLI::Option* input = app.add_option("--input", o.input,
+                                      "triangle mesh .off/.obj/.ply: a disk-topology surface (or planar with z = 0), or a "
+                                      "closed surface of any genus")
+                         ->type_name("FILE")
+                         ->group(in);
+  CLI::Option* image = app.add_option("--image", o.image,
+                                      "PNG or PPM/PGM image; the domain is the image rectangle scaled to unit width")
+                         ->type_name("FILE")
+                         ->group(in);
+  app.add_option("--domain", o.domain,
+                 "'square': the unit square as the input (the tool builds a background resolving the metric); with "
+                 "--input or --image: the parametric domain, plane | sphere | flat-torus | hyperbolic | automatic (default: "
+                 "from the topology; a domain that does not fit the input's topology is refused)")
+    ->type_name("NAME")
+    ->check(CLI::IsMember({"square", "automatic", "plane", "flat-torus", "sphere", "hyperbolic"}))
+    ->group(in);
+  input->excludes(image);
+
+  const std::string me = "metric (one of --metric, --metric-file; an image defines its own)";
+  CLI::Option* metric = app.add_option("--metric", o.metric,
+                                       "curvature | fig6 | fig7 | isotropic (default: isotropic; images use their colours)")
+                          ->type_name("NAME")
+                          ->check(CLI::IsMember({"curvature", "fig6", "fig7", "isotropic"}))
+                          ->group(me);
+  CLI::Option* metric_file =
+    app.add_option("--metric-file", o.metric_file,
+                   "one tensor per input vertex: first line the count, then m11 m12 m13 m22 m23 m33 per vertex")
+      ->type_name("FILE")
+      ->needs(input)
+      ->group(me);
+  metric->excludes(metric_file);
+  image->excludes(metric)->excludes(metric_file);
+  add_real(app, "--stretch-max", o.stretch_max, "R", "curvature metric: bound on the stretch ratio (default 10)",
+           real("at least 1", [](double x) { return x >= 1; }))
+    ->group(me);
+  app.add_option("--smoothing-iterations", o.smoothing_iterations, "curvature metric: smoothing rounds (default 10)")
+    ->type_name("K")
+    ->transform(decimal_integer())
+    ->check(CLI::Range(0, 100000))
+    ->group(me);
+  app.add_option("--smoothing-rings", o.smoothing_rings, "curvature metric: neighbourhood rings of the smoothing (default 2)")
+    ->type_name("R")
+    ->transform(decimal_integer())
+    ->check(CLI::Range(0, 100))
+    ->group(me);
+  add_real(app, "--anisotropy", o.anisotropy, "S",
+           "image metric: colour weight s of the paper's eq. 9 (default 0.1 colour, 0.2 grey)",
+           real("positive", [](double x) { return x > 0; }))
+    ->needs(image)
+    ->group(me);
+
+  const std::string re = "remeshing";
+  app.add_option("--vertices", o.vertices, "number of output vertices")
+    ->type_name("N")
+    ->required()
+    ->transform(decimal_integer())
+    ->check(CLI::Range(3LL, 100000000LL))
+    ->group(re);
+  app.add_option("--iterations", o.iterations, "CVT iterations (default 100)")
+    ->type_name("K")
+    ->transform(decimal_integer())
+    ->check(CLI::Range(0LL, 1000000LL))
+    ->group(re);
+  app.add_option("--seed", o.seed, "seed of the initial sites (default 0; same seed, same output)")
+    ->type_name("S")
+    ->transform(decimal_integer())
+    ->check(CLI::Range(0LL, 4294967295LL))
+    ->group(re);
+  app.add_option("--cvt", o.cvt, "CVT optimiser: lloyd | lbfgs (default lbfgs)")
+    ->type_name("NAME")
+    ->check(CLI::IsMember({"lloyd", "lbfgs"}))
+    ->group(re);
+  app.add_option("--background-vertices", o.background_vertices,
+                 "size of the background built for --domain square (default: automatic)")
+    ->type_name("N")
+    ->transform(decimal_integer())
+    ->check(CLI::Range(1LL, 100000000LL))
+    ->group(re);
+  add_real(app, "--corner-angle", o.corner_angle, "DEG",
+           "boundary turning angle above which a vertex is kept as a corner (default 30)",
+           real("in [0, 180)", [](double x) { return x >= 0 && x < 180; }))
+    ->group(re);
+  app.add_option("--threads", o.threads, "worker threads of the CVT (default 0: all cores)")
+    ->type_name("T")
+    ->transform(decimal_integer())
+    ->check(CLI::Range(0LL, 1024LL))
+    ->group(re);
+
+  const std::string out = "outputs";
+  app.add_option("--output", o.output, "the mesh (.off/.obj/.ply)")->type_name("FILE")->group(out);
+  app.add_option("--report", o.report, "JSON report: quality, solver figures, CVT energies and stage timings")
+    ->type_name("FILE.json")
+    ->group(out);
+  app.add_option("--svg", o.svg, "picture of the output (a curved one shaded), triangles coloured by quality G")
+    ->type_name("FILE.svg")
+    ->group(out);
+  app.add_option("--histogram", o.histogram, "angle histogram")->type_name("FILE.svg")->group(out);
+  app.add_flag("--quiet", o.quiet, "no summary on stdout")->group(out);
+}
+
 } // namespace detail
 
-// Parses argv (without the program name); throws Invalid_input with a one-line message on any error.
+/// the help text (CLI11's, from the declarations): options, defaults and exit status
+inline std::string usage()
+{
+  CLI::App app;
+  Options o;
+  detail::declare_options(app, o);
+  return app.help();
+}
+
+/// Parses argv (without the program name); throws Invalid_input with a one-line message on any error.
+/// --help and --version set `help` and `version` and skip every other check.
 inline Options parse_command_line(const std::vector<std::string>& args)
 {
   Options o;
-  bool metric_given = false;
-  for(std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if(i + 1 >= args.size()) throw Aniso_conformal::Invalid_input("option " + a + " needs a value");
-      return args[++i];
-    };
-    if(a == "--help" || a == "-h") o.help = true;
-    else if(a == "--version") o.version = true;
-    else if(a == "--quiet") o.quiet = true;
-    else if(a == "--input") o.input = value();
-    else if(a == "--domain") o.domain = value();
-    else if(a == "--image") o.image = value();
-    else if(a == "--metric") { o.metric = value(); metric_given = true; }
-    else if(a == "--metric-file") o.metric_file = value();
-    else if(a == "--stretch-max") o.stretch_max = detail::to_double(a, value());
-    else if(a == "--smoothing-iterations") o.smoothing_iterations = int(detail::to_integer(a, value(), 0, 100000));
-    else if(a == "--smoothing-rings") o.smoothing_rings = int(detail::to_integer(a, value(), 0, 100));
-    else if(a == "--anisotropy") o.anisotropy = detail::to_double(a, value());
-    else if(a == "--vertices") o.vertices = detail::to_integer(a, value(), 0, 100000000);
-    else if(a == "--iterations") o.iterations = detail::to_integer(a, value(), 0, 1000000);
-    else if(a == "--seed") o.seed = unsigned(detail::to_integer(a, value(), 0, 4294967295LL));
-    else if(a == "--cvt") o.cvt = value();
-    else if(a == "--background-vertices") o.background_vertices = detail::to_integer(a, value(), 1, 100000000);
-    else if(a == "--corner-angle") o.corner_angle = detail::to_double(a, value());
-    else if(a == "--threads") o.threads = unsigned(detail::to_integer(a, value(), 0, 1024));
-    else if(a == "--output") o.output = value();
-    else if(a == "--report") o.report = value();
-    else if(a == "--svg") o.svg = value();
-    else if(a == "--histogram") o.histogram = value();
-    else throw Aniso_conformal::Invalid_input("unknown option '" + a + "' (see --help)");
+  CLI::App app;
+  detail::declare_options(app, o);
+  try {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+    app.parse(reversed);
+  } catch(const CLI::CallForHelp&) {
+    Options h;
+    h.help = true;
+    return h;
+  } catch(const CLI::CallForVersion&) {
+    Options v;
+    v.version = true;
+    return v;
+  } catch(const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    throw Aniso_conformal::Invalid_input(what + " (see --help)");
   }
-  if(o.help || o.version) return o;
   // --domain square is an input; any other --domain names the parametric domain of --input or --image
   if(!o.domain.empty() && o.domain != "square") {
     using D = Aniso_conformal::Parametric_domain;
-    const D all[] = {D::AUTOMATIC, D::PLANE, D::FLAT_TORUS, D::SPHERE, D::HYPERBOLIC};
-    bool known = false;
-    for(D d : all)
-      if(o.domain == Aniso_conformal::domain_name(d)) { o.parametric_domain = d; known = true; }
-    if(!known)
-      throw Aniso_conformal::Invalid_input("unknown domain '" + o.domain +
-                                           "' (square; or, with --input: plane, flat-torus, sphere, hyperbolic, automatic)");
+    for(D d : {D::AUTOMATIC, D::PLANE, D::FLAT_TORUS, D::SPHERE, D::HYPERBOLIC})
+      if(o.domain == Aniso_conformal::domain_name(d)) o.parametric_domain = d;
     if(o.input.empty() && o.image.empty())
       throw Aniso_conformal::Invalid_input("--domain " + o.domain + " names the domain of --input; give --input FILE");
     o.domain.clear();
   }
   const int inputs = !o.input.empty() + !o.domain.empty() + !o.image.empty();
   if(inputs != 1) throw Aniso_conformal::Invalid_input("give exactly one of --input, --domain square, --image");
-  if(o.vertices < 0) throw Aniso_conformal::Invalid_input("--vertices N is required");
-  if(o.vertices < 3) throw Aniso_conformal::Invalid_input("--vertices must be at least 3");
-  if(metric_given && !o.metric_file.empty()) throw Aniso_conformal::Invalid_input("give either --metric or --metric-file");
-  if(metric_given && o.metric != "curvature" && o.metric != "fig6" && o.metric != "fig7" && o.metric != "isotropic")
-    throw Aniso_conformal::Invalid_input("unknown metric '" + o.metric + "' (curvature, fig6, fig7, isotropic)");
-  if(!o.metric_file.empty() && o.input.empty())
-    throw Aniso_conformal::Invalid_input("--metric-file needs --input (one tensor per input vertex)");
-  if(!o.image.empty() && (metric_given || !o.metric_file.empty()))
-    throw Aniso_conformal::Invalid_input("an image defines its own metric: use --anisotropy, not --metric");
-  if(o.anisotropy != -1 && o.image.empty()) throw Aniso_conformal::Invalid_input("--anisotropy applies to --image only");
-  if(o.anisotropy != -1 && !(o.anisotropy > 0)) throw Aniso_conformal::Invalid_input("--anisotropy must be positive");
   if(o.metric == "curvature" && o.input.empty())
     throw Aniso_conformal::Invalid_input("--metric curvature needs a surface (--input)");
-  if(!(o.stretch_max >= 1)) throw Aniso_conformal::Invalid_input("--stretch-max must be at least 1");
-  if(o.cvt != "lloyd" && o.cvt != "lbfgs") throw Aniso_conformal::Invalid_input("--cvt must be lloyd or lbfgs");
-  if(!(o.corner_angle >= 0 && o.corner_angle < 180)) throw Aniso_conformal::Invalid_input("--corner-angle must be in [0, 180)");
   if(o.background_vertices > 0 && o.domain.empty())
     throw Aniso_conformal::Invalid_input("--background-vertices applies to --domain square only");
-  if(metric_given && o.metric.empty()) o.metric = "isotropic";
-  if(!metric_given && o.metric_file.empty() && o.image.empty()) o.metric = "isotropic";
+  if(o.metric.empty() && o.metric_file.empty() && o.image.empty()) o.metric = "isotropic";
   return o;
 }
 

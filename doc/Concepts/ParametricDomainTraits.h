@@ -19,14 +19,14 @@
  *   `project_to_tangent_plane()` and `project_to_domain()` of a curved domain if it has them;
  * - `extract_dual_mesh()` (stage 5) calls `dual_triangles()` for the output connectivity,
  *   `background_location()` to map every site back onto the input through the background
- *   `Intrinsic_triangulation`, and `number_of_fixed_sites()`.
+ *   `Intrinsic_triangulation`, and `number_of_fixed_sites()`;
+ * - `remesh()` calls `initial_sites()` for the CVT's starting sites, which also decides
+ *   `number_of_fixed_sites()`.
  *
- * How a model is built and how it places the initial sites is its own business (`remesh()` uses
- * `Planar_domain_traits::initial_sites()`, `Spherical_domain_traits::initial_sites()`,
- * `Euclidean_periodic_domain_traits::initial_sites()` and `Hyperbolic_klein_domain_traits::initial_sites()`).
- * A periodic domain's `Point` stands for its class: `integrate()` must accept any translate (any image
- * under the group) of a site and return the centroid next to that translate, `dual_triangles()` must
- * identify translates.
+ * How a model is built is its own business (each takes the `Intrinsic_triangulation` and the
+ * embedding of its domain). A periodic domain's `Point` stands for its class: `integrate()` must
+ * accept any translate (any image under the group) of a site and return the centroid next to that
+ * translate, `dual_triangles()` must identify translates.
  *
  * Sites are ordered: the first `number_of_fixed_sites()` stay where they are (the boundary sites of a
  * planar domain; 0 for a closed domain); the CVT receives that number as its argument
@@ -66,6 +66,22 @@ public:
     Point centroid;  ///< (integral of `rho y`) / `mass`, or the site itself when the mass is 0
     double energy;   ///< integral of `rho |y - site|^2` over the cell
   };
+
+  /// @}
+
+  /// \name Sites (stage 4)
+  /// @{
+
+  /*!
+   * returns `n` initial sites spread over the density, deterministic for a `seed`: the models sample
+   * the background triangles' mass by evenly spaced quantiles along a space-filling curve with one
+   * random offset (`internal::stratified_samples()`), and a planar domain first places its fixed
+   * boundary sites. Non-const: it decides which (leading) sites are fixed, so call it before
+   * `number_of_fixed_sites()`; a closed domain fixes none.
+   * \throws Aniso_conformal::Invalid_input if `n` is too small for the domain (fewer than 3 or than the
+   *         boundary's corners in the plane, 4 on the sphere, 1 on the torus and the hyperbolic surface)
+   */
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed);
 
   /// @}
 
@@ -113,7 +129,7 @@ public:
   /// \name Dual mesh (stage 5)
   /// @{
 
-  /// returns the number of leading sites that do not move
+  /// returns the number of leading sites that do not move (as decided by the last `initial_sites()`)
   std::size_t number_of_fixed_sites() const;
 
   /*!

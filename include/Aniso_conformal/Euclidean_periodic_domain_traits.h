@@ -9,10 +9,7 @@
 #include <Aniso_conformal/flat_torus_embedding.h>
 #include <Aniso_conformal/internal/CVT/quotient_triangles.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
-
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -20,7 +17,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <random>
 #include <string>
 #include <thread>
@@ -142,10 +138,11 @@ public:
 
   /*!
    * places `n` sites spread over the density (stratified along a space-filling curve of the background
-   * triangles; deterministic for a `seed`), in the fundamental cell.
+   * triangles, `internal::stratified_samples()`; deterministic for a `seed`), in the fundamental cell.
+   * None is fixed.
    * \throws Invalid_input if `n < 1`
    */
-  std::vector<Point> initial_sites(std::size_t n, unsigned seed) const
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
   {
     if(n < 1) throw Invalid_input("the flat torus needs at least one site");
     std::mt19937_64 rng(seed);
@@ -234,7 +231,7 @@ public:
     // sites closer than this are one point for the output (their triangles would be degenerate)
     const double tiny = 1e-9 * std::sqrt(m_area / double(ns));
     for(std::size_t i = 0; i < ns; ++i) {
-      if(pd.handle[i] == DT::Vertex_handle() || pd.handle[i]->info() != int(i))
+      if(!pd.has_vertex(i))
         throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with another site on the torus", 0);
       auto c = pd.dt.incident_vertices(pd.handle[i]), done = c;
       do {
@@ -259,33 +256,18 @@ public:
     for(std::size_t i = 0; i < ns; ++i) wrapped[i] = wrap(sites[i]);
     Periodic_delaunay pd;
     build_periodic_delaunay(wrapped, pd);
-    std::vector<std::vector<Point>> cells(ns);
-    for(std::size_t i = 0; i < ns; ++i) {
-      if(pd.handle[i] == DT::Vertex_handle() || pd.handle[i]->info() != int(i)) continue;
-      auto f = pd.dt.incident_faces(pd.handle[i]), done = f;
-      do {
-        if(!pd.dt.is_infinite(f)) {
-          const K::Point_2 c = pd.dt.circumcenter(f);
-          cells[i].emplace_back(c.x(), c.y());
-        }
-      } while(++f != done);
-    }
-    return cells;
+    return internal::voronoi_polygons(pd.dt, pd.handle, ns, [&](DT::Face_handle f) { return pd.dt.circumcenter(f); });
   }
   /// @}
 
 private:
-  typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-  typedef CGAL::Triangulation_vertex_base_with_info_2<int, K> Vb;
-  typedef CGAL::Triangulation_data_structure_2<Vb> Tds;
-  typedef CGAL::Delaunay_triangulation_2<K, Tds> DT;
+  typedef internal::Indexed_delaunay_2::K K;
+  typedef internal::Indexed_delaunay_2::Triangulation DT;
 
   // the wrapped sites (indices 0 .. n-1) and their translates in a band around the fundamental cell
-  struct Periodic_delaunay {
+  struct Periodic_delaunay : internal::Indexed_delaunay_2 {
     std::vector<Point> points;
     std::vector<int> original;
-    DT dt;
-    std::vector<DT::Vertex_handle> handle;
   };
 
   void build_periodic_delaunay(const std::vector<Point>& wrapped, Periodic_delaunay& pd) const
@@ -313,13 +295,7 @@ private:
             pd.original.push_back(int(s));
           }
         }
-      pd.dt.clear();
-      std::vector<std::pair<K::Point_2, int>> pts;
-      pts.reserve(pd.points.size());
-      for(std::size_t e = 0; e < pd.points.size(); ++e) pts.emplace_back(K::Point_2(pd.points[e].x(), pd.points[e].y()), int(e));
-      pd.dt.insert(pts.begin(), pts.end());
-      pd.handle.assign(pd.points.size(), DT::Vertex_handle());
-      for(auto v = pd.dt.finite_vertices_begin(); v != pd.dt.finite_vertices_end(); ++v) pd.handle[std::size_t(v->info())] = v;
+      pd.build(pd.points);
       // Every Delaunay circle that matters (around a triangle at an original site, or centred where the
       // background triangles reach) must lie in the band: then no translate left out can be inside it,
       // so those triangles and the Voronoi vertices there are those of the torus.

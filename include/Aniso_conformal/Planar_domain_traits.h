@@ -8,9 +8,10 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/conformal_embedding.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
+#include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -69,7 +70,12 @@ public:
   /// \name Creation
   /// @{
 
-  /// lays out the background of `itri` with the embedding `emb`; `threads` workers integrate (0 = hardware)
+  /*!
+   * lays out the background of `itri` with the embedding `emb`; `threads` workers integrate (0 = hardware).
+   * Also computes `adjusted_area()` from the current lengths of `itri`, for `initial_sites()`: build the
+   * traits after the embedding, from the triangulation it flipped.
+   * \throws Invalid_input if the background has no boundary
+   */
   Planar_domain_traits(const Intrinsic_triangulation& itri, const Planar_embedding& emb, unsigned threads = 0)
     : m_itri(itri)
   {
@@ -96,6 +102,10 @@ public:
       m_total_mass += m_tri.back().area * (rho[0] + rho[1] + rho[2]) / 3.0;
       m_area += m_tri.back().area;
     }
+    // the area in the metric: of the lengths as they are now (after the embedding's flips, whose
+    // lengths the boundary spacing matches)
+    for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
+      m_adjusted_area += internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
     m_grid.build(m_tri);
     build_boundary();
     m_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
@@ -109,6 +119,8 @@ public:
   double total_mass() const { return m_total_mass; }
   /// area of the domain
   double area() const { return m_area; }
+  /// area of the background in the metric: the sum of the Heron areas of the lengths of `itri` at construction
+  double adjusted_area() const { return m_adjusted_area; }
   /// the boundary loop as background vertices, counterclockwise (the domain is on the left)
   const std::vector<int>& boundary_vertices() const { return m_boundary; }
   /// the domain position of background vertex `v`
@@ -133,12 +145,13 @@ public:
   /// \name Sites
   /// @{
   /*!
-   * places `n` sites: the boundary sites first (fixed) at the spacing `n` implies, then `n - fixed`
-   * interior sites spread over the density (stratified along a space-filling curve; deterministic for a `seed`).
-   * `adjusted_area` is the area of the background in the metric (sum of Heron areas of the adjusted lengths).
-   * \throws Invalid_input if `n` is smaller than the number of corners plus one or too large for the background
+   * places `n` sites: the boundary sites first (fixed: `number_of_fixed_sites()` becomes their number) at
+   * the spacing `n` implies for an equilateral mesh of the adjusted area, then `n - fixed` interior sites
+   * spread over the density (stratified along a space-filling curve, `internal::stratified_samples()`;
+   * deterministic for a `seed`).
+   * \throws Invalid_input if `n` is smaller than 3 or than the number of corners
    */
-  std::vector<Point> initial_sites(std::size_t n, unsigned seed, double adjusted_area)
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
   {
     std::size_t corners = 0;
     for(int v : m_boundary)
@@ -148,7 +161,7 @@ public:
                           " vertices (the boundary has " + std::to_string(corners) + " corners); " +
                           std::to_string(n) + " were requested");
     // spacing h of an equilateral mesh with n vertices, nb = P/h of them on the boundary, covering the area
-    const double c = std::sqrt(3.0) / 4, P = m_perimeter, A = adjusted_area * (m_perimeter_metric_ratio);
+    const double c = std::sqrt(3.0) / 4, P = m_perimeter, A = m_adjusted_area * (m_perimeter_metric_ratio);
     const double nn = std::max(1.0, double(n) - 1);
     const double h = (c * P + std::sqrt(c * c * P * P + 8 * c * nn * A)) / (4 * c * nn);
     place_boundary_sites(h, n);
@@ -156,21 +169,10 @@ public:
     std::vector<Point> sites;
     for(const auto& b : m_boundary_sites) sites.push_back(boundary_point(b));
     // interior: stratified sampling of the density along the Morton curve of the background triangles
-    // (evenly spaced quantiles of the mass, shifted by one random offset), then a random point in the
-    // chosen triangle. A space-filling-curve sample is already well spread, so the CVT starts close to
-    // its optimum; the seed changes both the offset and the points.
     std::mt19937_64 rng(seed);
     const std::vector<Point> inside = internal::stratified_samples(m_tri, n - sites.size(), rng);
     sites.insert(sites.end(), inside.begin(), inside.end());
     return sites;
-  }
-  /// `initial_sites(n, seed, adjusted_area)` with the area of the background in the metric
-  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
-  {
-    double adjusted_area = 0;
-    for(std::size_t f = 0; f < m_itri.number_of_faces(); ++f)
-      adjusted_area += internal::heron_area(m_itri.length(int(3 * f)), m_itri.length(int(3 * f + 1)), m_itri.length(int(3 * f + 2)));
-    return initial_sites(n, seed, adjusted_area);
   }
   /// the number of fixed (boundary) sites placed by the last `initial_sites()`
   std::size_t number_of_fixed_sites() const { return m_sites_fixed; }
@@ -224,15 +226,10 @@ public:
   void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const
   {
     const std::size_t ns = sites.size();
-    DT dt;
-    std::vector<std::pair<K::Point_2, int>> pts;
-    pts.reserve(ns);
-    for(std::size_t i = 0; i < ns; ++i) pts.emplace_back(K::Point_2(sites[i].x(), sites[i].y()), int(i));
-    dt.insert(pts.begin(), pts.end());
-    std::vector<DT::Vertex_handle> handle(ns);
-    for(auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) handle[v->info()] = v;
+    internal::Indexed_delaunay_2 d;
+    d.build(sites);
     std::vector<int> start, nbr;
-    internal::delaunay_neighbours(dt, handle, start, nbr);
+    internal::delaunay_neighbours(d.dt, d.handle, start, nbr);
     std::vector<internal::Cell_accumulator> acc;
     internal::integrate_restricted_voronoi(m_tri, sites, start, nbr, m_threads, acc);
     cells.assign(ns, Cell());
@@ -342,9 +339,6 @@ public:
 
 private:
   typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-  typedef CGAL::Triangulation_vertex_base_with_info_2<int, K> Vb;
-  typedef CGAL::Triangulation_data_structure_2<Vb> Tds;
-  typedef CGAL::Delaunay_triangulation_2<K, Tds> DT;
   typedef CGAL::Triangulation_vertex_base_with_info_2<int, K> CVb;
   typedef CGAL::Constrained_triangulation_face_base_2<K> CFb0;
   typedef CGAL::Triangulation_face_base_with_info_2<int, K, CFb0> CFb;
@@ -445,7 +439,7 @@ private:
   std::vector<int> m_boundary, m_boundary_halfedges;
   std::vector<Boundary_location> m_boundary_sites;
   std::size_t m_sites_fixed = 0;
-  double m_total_mass = 0, m_area = 0, m_perimeter = 0, m_perimeter_metric_ratio = 1;
+  double m_total_mass = 0, m_area = 0, m_adjusted_area = 0, m_perimeter = 0, m_perimeter_metric_ratio = 1;
   internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
 };

@@ -9,6 +9,7 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/parameters.h>
+#include <Aniso_conformal/refine_background.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include <array>
@@ -33,6 +34,7 @@ struct Remeshing_result {
   std::size_t background_vertices = 0;             ///< vertices of the background after adjustment
   std::size_t background_faces = 0;                ///< faces of the background after adjustment
   std::size_t corners = 0;                         ///< input corners kept as output vertices
+  Refinement_report refinement;                    ///< the background refined for the requested size (stage 2)
   Edge_adjustment_report adjustment;               ///< flips and splits of stage 2
   std::size_t conformal_iterations = 0;            ///< Newton iterations of stage 3
   double conformal_residual = 0;                   ///< max angle-sum error at the end of stage 3 (radians)

@@ -7,6 +7,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/CVT/spherical_voronoi.h>
+#include <Aniso_conformal/internal/CVT/stratified_samples.h>
 #include <Aniso_conformal/spherical_embedding.h>
 
 #include <CGAL/AABB_traits.h>
@@ -177,16 +178,20 @@ public:
 
   /*!
    * places `n` sites spread over the density: stratified along a space-filling curve of the chordal
-   * triangles (evenly spaced quantiles of the mass, a random point in each chosen triangle),
-   * centrally projected onto the sphere; deterministic for a `seed`.
+   * triangles (`internal::stratified_samples()`: evenly spaced quantiles of the mass, a random point in
+   * each chosen triangle), centrally projected onto the sphere; deterministic for a `seed`. None is fixed.
    * \throws Invalid_input if `n < 4` (the smallest triangulation of the sphere is the tetrahedron)
    */
-  std::vector<Point> initial_sites(std::size_t n, unsigned seed) const
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
   {
     if(n < 4)
       throw Invalid_input("the sphere needs at least 4 sites (a tetrahedron), " + std::to_string(n) + " were requested");
     std::mt19937_64 rng(seed);
-    return internal::spherical_stratified_samples(m_tri, n, rng);
+    std::vector<Point> sites = internal::stratified_samples(
+        m_tri.size(), [&](std::size_t f) { return m_tri[f].flat.mass; },
+        [&](std::size_t f) -> const std::array<Eigen::Vector3d, 3>& { return m_tri[f].p; }, n, rng);
+    for(Point& x : sites) x = x.normalized();
+    return sites;
   }
   /// 0: no site is fixed on a closed surface
   std::size_t number_of_fixed_sites() const { return 0; }

@@ -157,7 +157,8 @@ Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
     area += domain_area[std::size_t(f)];
   }
   std::vector<char> done;
-  emb.corner_uv = internal::unfold_breadth_first(itri, L, 0, Eigen::Vector2d(0, 0), Eigen::Vector2d(L[0][0], 0),
+  const int root = tc.root_face;
+  emb.corner_uv = internal::unfold_breadth_first(itri, L, root, Eigen::Vector2d(0, 0), Eigen::Vector2d(L[std::size_t(root)][0], 0),
                                                  [&](int h) { return tc.in_cotree[std::size_t(h)] != 0; }, internal::third_point, done);
   internal::read_lattice(itri, tc, area, emb);
   emb.conformal_factor = internal::vertex_conformal_factors(itri, domain_area);

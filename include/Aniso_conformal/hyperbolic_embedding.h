@@ -216,8 +216,10 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
                                   std::to_string(4 * pi * (emb.genus - 1)),
                               std::abs(emb.area - 4 * pi * (emb.genus - 1)));
   std::vector<char> done;
+  const int root = tc.root_face;  // the central face: the layout stays as close to the centre as it can
+  const double l0 = L[std::size_t(root)][0];
   emb.corner_hyperboloid = internal::unfold_breadth_first(
-      itri, L, 0, Eigen::Vector3d(Eigen::Vector3d::UnitX()), Eigen::Vector3d(std::cosh(L[0][0]), std::sinh(L[0][0]), 0),
+      itri, L, root, Eigen::Vector3d(Eigen::Vector3d::UnitX()), Eigen::Vector3d(std::cosh(l0), std::sinh(l0), 0),
       [&](int h) { return tc.in_cotree[std::size_t(h)] != 0; }, internal::hyperbolic_third_point, done);
 
   // ---- 3. centre the domain, 4. deck transformations and the group's relations, checked

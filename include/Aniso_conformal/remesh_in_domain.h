@@ -71,10 +71,7 @@ Remeshed_surface remesh_in_domain(const Input_surface& surface, const Anisotropi
   result.input_faces = surface.number_of_faces();
 
   // 1. metric, 2. edge lengths
-  Intrinsic_triangulation itri = internal::metric_and_edge_lengths(surface, metric, np, vis, result);
-  if(n > itri.number_of_vertices())
-    throw Remeshing_failure("remesh(): " + std::to_string(n) + " output vertices exceed what the background triangulation can carry (" +
-                            std::to_string(itri.number_of_vertices()) + " vertices); refine the input");
+  Intrinsic_triangulation itri = internal::metric_and_edge_lengths(surface, metric, n, np, vis, result);
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   internal::Stage_timer t3(vis, Stage::EMBEDDING);

@@ -6,14 +6,20 @@
 
 #include <Aniso_conformal/Exceptions.h>
 
-#include <zlib.h>
+#include <Aniso_conformal/internal/printable.h>
+
+#include <png.h>
 
 #include <algorithm>
 #include <cctype>
+#include <csetjmp>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -104,115 +110,161 @@ inline Image read_pnm(const std::string& path, const std::vector<unsigned char>&
   return img;
 }
 
-// ---- PNG: all bit depths and colour types, non-interlaced
-inline std::uint32_t be32(const unsigned char* p)
+// ---- PNG, decoded by libpng (Debian's libpng-dev). libpng reports an error by calling our error function,
+// which must not return: it copies the message and longjmps back to the setjmp of the step that called
+// libpng. A longjmp that skips the destructor of a C++ object is undefined behaviour ([csetjmp.syn]), so
+// the three steps below (png_step_*) hold only trivially destructible objects, the callbacks too, and
+// everything that owns memory (the png_struct guard, the row buffer, the Image) lives in read_png(),
+// which each step returns to normally (false on error). No C++ exception passes through libpng.
+
+// What the callbacks share with read_png(); plain data, it is read after a longjmp.
+struct Png_state {
+  const unsigned char* data;
+  std::size_t size;
+  std::size_t position;
+  char error[200];    // libpng's error message
+  char warning[200];  // its last warning (libpng warns with the detail, e.g. which IHDR field, then errs)
+};
+
+inline void png_on_read(png_structp png, png_bytep out, std::size_t n)
 {
-  return std::uint32_t(p[0]) << 24 | std::uint32_t(p[1]) << 16 | std::uint32_t(p[2]) << 8 | std::uint32_t(p[3]);
+  Png_state* s = static_cast<Png_state*>(png_get_io_ptr(png));
+  if(n > s->size - s->position) png_error(png, "the file ends before its IEND chunk");
+  std::memcpy(out, s->data + s->position, n);
+  s->position += n;
 }
+inline void png_on_error(png_structp png, png_const_charp message)
+{
+  Png_state* s = static_cast<Png_state*>(png_get_error_ptr(png));
+  std::snprintf(s->error, sizeof(s->error), "%s", message ? message : "unknown error");
+  png_longjmp(png, 1);
+}
+// warnings are kept, never printed: the library writes nothing to stderr
+inline void png_on_warning(png_structp png, png_const_charp message)
+{
+  Png_state* s = static_cast<Png_state*>(png_get_error_ptr(png));
+  std::snprintf(s->warning, sizeof(s->warning), "%s", message ? message : "");
+}
+
+// step 1: the chunks up to the image data (IHDR, PLTE, ancillary chunks); nothing sized by the image yet
+inline bool png_step_header(png_structp png, png_infop info)
+{
+  if(setjmp(png_jmpbuf(png))) return false;
+  png_read_info(png, info);
+  return true;
+}
+// step 2: one byte per sample below 8 bits, unscaled (16-bit samples stay big-endian; no gamma, palette or
+// alpha transform: the samples are converted as they are), interlacing undone; `*rowbytes` after that
+inline bool png_step_transforms(png_structp png, png_infop info, int bit_depth, std::size_t* rowbytes)
+{
+  if(setjmp(png_jmpbuf(png))) return false;
+  if(bit_depth < 8) png_set_packing(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  *rowbytes = png_get_rowbytes(png, info);
+  return true;
+}
+// step 3: the rows, then the chunks after them up to IEND (CRCs checked)
+inline bool png_step_rows(png_structp png, png_bytepp rows)
+{
+  if(setjmp(png_jmpbuf(png))) return false;
+  png_read_image(png, rows);
+  png_read_end(png, nullptr);
+  return true;
+}
+
+// libpng 1.6 only warns (a "benign error" on read) when a chunk declares more than its 8 MB chunk limit,
+// then allocates the declared length: fuzzing found a 68-byte file with a tEXt chunk of 1.1 GB that made it
+// allocate that much. A chunk cannot be longer than the file, so each chunk's length is checked against
+// the bytes left before libpng sees the file (up to IEND; what follows is libpng's to judge).
+inline void check_png_chunk_lengths(const std::string& path, const std::vector<unsigned char>& b)
+{
+  auto be32 = [&](std::size_t p) {
+    return std::uint32_t(b[p]) << 24 | std::uint32_t(b[p + 1]) << 16 | std::uint32_t(b[p + 2]) << 8 | std::uint32_t(b[p + 3]);
+  };
+  // each chunk: length, type, data, CRC; libpng allocates the data once it has read length and type
+  for(std::size_t pos = 8; b.size() - pos >= 8;) {
+    const std::uint32_t length = be32(pos);
+    const std::string type(b.begin() + std::ptrdiff_t(pos + 4), b.begin() + std::ptrdiff_t(pos + 8));
+    if(std::uint64_t(length) + 12 > b.size() - pos)
+      throw Invalid_input("image " + path + ": invalid PNG: chunk '" + Aniso_conformal::internal::printable(type, 4) + "' of " +
+                          std::to_string(length) + " bytes runs past the end of the file");
+    if(type == "IEND") return;
+    pos += 12 + std::size_t(length);
+  }
+}
+
+// owns libpng's structures
+struct Png_reader {
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  Png_reader(const Png_reader&) = delete;
+  Png_reader& operator=(const Png_reader&) = delete;
+  explicit Png_reader(Png_state* state)
+  {
+    png = png_create_read_struct(PNG_LIBPNG_VER_STRING, state, png_on_error, png_on_warning);
+    if(png != nullptr) info = png_create_info_struct(png);
+    if(png != nullptr) png_set_read_fn(png, state, png_on_read);
+  }
+  ~Png_reader() { png_destroy_read_struct(&png, info != nullptr ? &info : nullptr, nullptr); }
+};
 
 inline Image read_png(const std::string& path, const std::vector<unsigned char>& b)
 {
   const std::string bad = "image " + path + ": ";
-  std::size_t pos = 8;
-  long long w = 0, h = 0;
-  int depth = 0, color = -1;
-  std::vector<unsigned char> idat, palette;
-  bool header = false, end = false;
-  while(!end) {
-    if(b.size() - pos < 12) throw Invalid_input(bad + "truncated PNG chunk");
-    const std::uint32_t len = be32(&b[pos]);
-    const std::string type(reinterpret_cast<const char*>(&b[pos + 4]), 4);
-    if(len > b.size() - pos - 12) throw Invalid_input(bad + "PNG chunk '" + type + "' runs past the end of the file");
-    const unsigned char* d = &b[pos + 8];
-    if(type == "IHDR") {
-      if(len != 13) throw Invalid_input(bad + "bad PNG header");
-      w = be32(d);
-      h = be32(d + 4);
-      depth = d[8];
-      color = d[9];
-      if(d[10] != 0 || d[11] != 0) throw Invalid_input(bad + "unknown PNG compression or filter method");
-      if(d[12] != 0) throw Invalid_input(bad + "interlaced PNG is not supported");
-      header = true;
-    } else if(type == "PLTE") {
-      palette.assign(d, d + len);
-    } else if(type == "IDAT") {
-      idat.insert(idat.end(), d, d + len);
-    } else if(type == "IEND") {
-      end = true;
-    }
-    pos += 12 + len;
-  }
-  if(!header) throw Invalid_input(bad + "PNG without header");
-  check_size(path, w, h);
-  int samples = 0;
-  switch(color) {
-  case 0: samples = 1; break;
-  case 2: samples = 3; break;
-  case 3: samples = 1; break;
-  case 4: samples = 2; break;
-  case 6: samples = 4; break;
-  default: throw Invalid_input(bad + "unknown PNG colour type " + std::to_string(color));
-  }
-  const bool depth_ok = (depth == 8 || depth == 16) || ((color == 0 || color == 3) && (depth == 1 || depth == 2 || depth == 4));
-  if(!depth_ok || (color == 3 && depth == 16)) throw Invalid_input(bad + "invalid PNG bit depth " + std::to_string(depth));
-  if(color == 3 && (palette.empty() || palette.size() % 3 != 0)) throw Invalid_input(bad + "palette PNG without a valid palette");
-  const std::size_t bits = std::size_t(samples) * std::size_t(depth);
-  const std::size_t stride = (std::size_t(w) * bits + 7) / 8, bpp = std::max<std::size_t>(1, bits / 8);
-  const std::size_t raw_size = (stride + 1) * std::size_t(h);
-  // deflate expands at most 1032 times: refuse a header asking for more than the data can hold before
-  // allocating it (a 100-byte file asked for 2 GB)
-  if(raw_size / 1032 > idat.size()) throw Invalid_input(bad + "corrupt or truncated PNG image data");
-  std::vector<unsigned char> raw(raw_size);
-  uLongf out_len = uLongf(raw_size);
-  const int zr = uncompress(raw.data(), &out_len, idat.data(), uLong(idat.size()));
-  if(zr != Z_OK || out_len != raw_size) throw Invalid_input(bad + "corrupt or truncated PNG image data");
-  // undo the per-row filters (PNG spec 9)
-  std::vector<unsigned char> pix(stride * std::size_t(h));
-  for(std::size_t y = 0; y < std::size_t(h); ++y) {
-    const unsigned char filter = raw[y * (stride + 1)];
-    const unsigned char* src = &raw[y * (stride + 1) + 1];
-    unsigned char* row = &pix[y * stride];
-    const unsigned char* up = y ? &pix[(y - 1) * stride] : nullptr;
-    for(std::size_t i = 0; i < stride; ++i) {
-      const int a = i >= bpp ? row[i - bpp] : 0, u = up ? up[i] : 0, c = (up && i >= bpp) ? up[i - bpp] : 0;
-      int v = src[i];
-      switch(filter) {
-      case 0: break;
-      case 1: v += a; break;
-      case 2: v += u; break;
-      case 3: v += (a + u) / 2; break;
-      case 4: {
-        const int p = a + u - c, pa = std::abs(p - a), pb = std::abs(p - u), pc = std::abs(p - c);
-        v += (pa <= pb && pa <= pc) ? a : (pb <= pc ? u : c);
-        break;
-      }
-      default: throw Invalid_input(bad + "unknown PNG row filter " + std::to_string(filter));
-      }
-      row[i] = static_cast<unsigned char>(v & 0xff);
-    }
-  }
-  auto sample = [&](std::size_t y, std::size_t x, std::size_t s) -> unsigned {
-    const std::size_t bit = (x * std::size_t(samples) + s) * std::size_t(depth);
-    const unsigned char* row = &pix[y * stride];
-    if(depth == 16) return unsigned(row[bit / 8]) << 8 | row[bit / 8 + 1];
-    if(depth == 8) return row[bit / 8];
-    return (row[bit / 8] >> (8 - depth - bit % 8)) & ((1u << depth) - 1);
+  Png_state state{b.data(), b.size(), 0, {0}, {0}};
+  auto failure = [&]() {
+    std::string m = bad + "invalid PNG: " + Aniso_conformal::internal::printable(state.error, 120);
+    if(state.warning[0] != '\0' && std::strcmp(state.warning, state.error) != 0)
+      m += " (" + Aniso_conformal::internal::printable(state.warning, 120) + ")";
+    return Invalid_input(m);
   };
+  check_png_chunk_lengths(path, b);
+  Png_reader reader(&state);
+  if(reader.png == nullptr || reader.info == nullptr) throw std::bad_alloc();
+  png_set_user_limits(reader.png, 1u << 28, 1u << 28);  // check_size() has the last word
+  if(!png_step_header(reader.png, reader.info)) throw failure();
+
+  const long long w = png_get_image_width(reader.png, reader.info), h = png_get_image_height(reader.png, reader.info);
+  const int depth = png_get_bit_depth(reader.png, reader.info), color = png_get_color_type(reader.png, reader.info);
+  const std::size_t samples = png_get_channels(reader.png, reader.info);  // per pixel: 1 grey or index .. 4 RGBA
+  check_size(path, w, h);
+  // deflate expands at most 1032 times: refuse a header asking for more than the file can hold before
+  // allocating it (a 69-byte file asked for 2 GB)
+  const std::size_t raw_size = ((std::size_t(w) * samples * std::size_t(depth) + 7) / 8 + 1) * std::size_t(h);
+  if(raw_size / 1032 > b.size()) throw Invalid_input(bad + "corrupt or truncated PNG image data");
+  std::size_t rowbytes = 0;
+  if(!png_step_transforms(reader.png, reader.info, depth, &rowbytes)) throw failure();
+  const std::size_t bytes = depth == 16 ? 2 : 1;
+  if(rowbytes != std::size_t(w) * samples * bytes)
+    throw Internal_error(bad + "libpng gives rows of " + std::to_string(rowbytes) + " bytes, " +
+                         std::to_string(std::size_t(w) * samples * bytes) + " expected");
+  std::vector<unsigned char> pixels(rowbytes * std::size_t(h));
+  std::vector<png_bytep> rows(static_cast<std::size_t>(h));
+  for(std::size_t y = 0; y < rows.size(); ++y) rows[y] = pixels.data() + y * rowbytes;
+  if(!png_step_rows(reader.png, rows.data())) throw failure();
+
+  png_colorp palette = nullptr;
+  int palette_size = 0;
+  if(color == PNG_COLOR_TYPE_PALETTE && png_get_PLTE(reader.png, reader.info, &palette, &palette_size) == 0)
+    throw Invalid_input(bad + "palette PNG without a palette");
   Image img;
   img.width = int(w);
   img.height = int(h);
-  img.channels = (color == 0 || color == 4) ? 1 : 3;
+  img.channels = (color == PNG_COLOR_TYPE_GRAY || color == PNG_COLOR_TYPE_GRAY_ALPHA) ? 1 : 3;  // alpha dropped
   img.data.resize(std::size_t(w) * std::size_t(h) * std::size_t(img.channels));
   const double maxv = double((1u << depth) - 1);
   std::size_t k = 0;
   for(std::size_t y = 0; y < std::size_t(h); ++y)
     for(std::size_t x = 0; x < std::size_t(w); ++x) {
-      if(color == 3) {
-        const std::size_t i = sample(y, x, 0);
-        if(3 * i + 2 >= palette.size()) throw Invalid_input(bad + "palette index out of range");
-        for(int c = 0; c < 3; ++c) img.data[k++] = float(palette[3 * i + std::size_t(c)] / 255.0);
+      const unsigned char* p = rows[y] + x * samples * bytes;
+      if(color == PNG_COLOR_TYPE_PALETTE) {
+        if(p[0] >= palette_size) throw Invalid_input(bad + "palette index out of range");
+        const png_color& c = palette[p[0]];
+        for(const png_byte v : {c.red, c.green, c.blue}) img.data[k++] = float(v / 255.0);
       } else {
-        for(int c = 0; c < img.channels; ++c) img.data[k++] = float(sample(y, x, std::size_t(c)) / maxv);
+        for(std::size_t c = 0; c < std::size_t(img.channels); ++c)
+          img.data[k++] = float((bytes == 2 ? unsigned(p[2 * c]) << 8 | p[2 * c + 1] : p[c]) / maxv);
       }
     }
   return img;
@@ -222,10 +274,14 @@ inline Image read_png(const std::string& path, const std::vector<unsigned char>&
 
 /*!
  * \ingroup PkgAnisoConformalIO
- * reads a PNG (any bit depth and colour type, not interlaced) or a PPM/PGM (P2, P3, P5, P6) image.
- * Alpha is dropped; grey images have 1 channel, colour and palette images 3.
- * \throws Invalid_input naming the file: missing, unknown format, truncated or corrupt data, zero or
- *         absurd size (more than 2^28 pixels), interlaced PNG
+ * reads a PNG (any bit depth, colour type and interlacing; decoded by libpng, CRCs checked) or a
+ * PPM/PGM (P2, P3, P5, P6) image. Samples are scaled to [0, 1] by the largest value of their bit depth
+ * (or maxval), with no gamma correction; alpha and transparency are dropped; grey images have 1 channel,
+ * colour and palette images 3.
+ * \throws Invalid_input naming the file and the problem (libpng's message for a PNG, its bytes escaped):
+ *         missing, unknown format, truncated or corrupt data, a palette index out of range, zero or
+ *         absurd size (more than 2^28 pixels, or more pixels than the compressed data can hold)
+ * \throws Internal_error if libpng's row size disagrees with the one computed from the header
  */
 inline Image read_image(const std::string& path)
 {

@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
+#include <Aniso_conformal/internal/printable.h>
 
 #include <Eigen/Core>
 
@@ -70,8 +71,11 @@ inline Tensor_field_metric read_metric_file(const std::string& path, std::size_t
       errno = 0;
       char* end = nullptr;
       const double x = std::strtod(token.c_str(), &end);
-      if(*end != '\0') throw Invalid_input(at + ": '" + token + "' is not a number");
-      if(!std::isfinite(x) || errno == ERANGE) throw Invalid_input(at + ": non-finite entry '" + token + "'");
+      // the whole token must be the number (a NUL byte inside it too); a quoted token is cut to 40 bytes
+      // with the non-printable ones escaped: the file may be anything
+      if(end != token.c_str() + token.size()) throw Invalid_input(at + ": '" + Aniso_conformal::internal::printable(token, 40) + "' is not a number");
+      if(!std::isfinite(x) || errno == ERANGE)
+        throw Invalid_input(at + ": non-finite entry '" + Aniso_conformal::internal::printable(token, 40) + "'");
       v.push_back(x);
     }
     if(v.size() != 6)

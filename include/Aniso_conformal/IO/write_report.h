@@ -4,122 +4,155 @@
 #ifndef ANISO_CONFORMAL_IO_WRITE_REPORT_H
 #define ANISO_CONFORMAL_IO_WRITE_REPORT_H
 
+#include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Remeshing_result.h>
 #include <Aniso_conformal/Stage.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
-#include <map>
+#include <cstdlib>
 #include <ostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 /// \file write_report.h
+/// The JSON report of a `remesh()` call, built with nlohmann-json (Debian's nlohmann-json3-dev).
 
 namespace Aniso_conformal {
 namespace IO {
 
 namespace internal {
-inline std::string json_number(double x)
+// a real figure of the report: rounded to 10 significant digits, the precision the report has always had
+// (so that reports compare equal across versions), or null if it is not finite
+inline nlohmann::json report_number(double x)
 {
-  if(!std::isfinite(x)) return "null";
-  char buf[64];
+  if(!std::isfinite(x)) return nullptr;
+  char buf[32];
   std::snprintf(buf, sizeof(buf), "%.10g", x);
-  return buf;
+  return std::strtod(buf, nullptr);
 }
-inline std::string json_array(const std::vector<double>& v)
+inline nlohmann::json report_numbers(const std::vector<double>& v)
 {
-  std::string s = "[";
-  for(std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + json_number(v[i]);
-  return s + "]";
+  nlohmann::json a = nlohmann::json::array();
+  for(double x : v) a.push_back(report_number(x));
+  return a;
 }
-inline std::string json_string(const std::string& x)
+// a figure of the domain, whatever the domain: a scalar, a vector, or a matrix as an array of rows
+inline nlohmann::json domain_figure(const Domain_figure& f)
 {
-  std::string s = "\"";
-  for(char c : x) {
-    if(c == '"' || c == '\\') s += '\\';
-    if(static_cast<unsigned char>(c) < 0x20) { s += ' '; continue; }
-    s += c;
+  auto number = [&](double x) -> nlohmann::json {
+    if(f.integral && std::isfinite(x)) return static_cast<long long>(x);
+    return report_number(x);
+  };
+  if(f.columns == 0 && f.values.size() == 1) return number(f.values[0]);
+  nlohmann::json rows = nlohmann::json::array(), row = nlohmann::json::array();
+  for(double x : f.values) {
+    row.push_back(number(x));
+    if(f.columns > 0 && row.size() == f.columns) {
+      rows.push_back(row);
+      row = nlohmann::json::array();
+    }
   }
-  return s + "\"";
+  if(f.columns == 0) return row;
+  if(!row.empty()) rows.push_back(row);  // a last, incomplete row: written as it is
+  return rows;
 }
 } // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalIO
- * writes `r` as a JSON object to `os`: input and output sizes, the quality in the metric (with the
- * angle histogram and the metric-conformity figures), the counts of flips and splits, the conformal
- * solver's iterations and residual, the CVT energy per iteration, and the wall time of every stage.
- * `extra` adds string-valued or numeric fields (already JSON-encoded values) at the top level, e.g.
- * the command line's parameters or the time spent building a background.
+ * the report of `r` as a JSON object: `domain`; `input` and `background` (vertices, faces); `output`
+ * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
+ * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
+ * histogram, the normalised metric edge lengths); `refinement` (the background refined for the requested
+ * size: vertices before and after, splits, the output's and the longest edge length in the metric);
+ * `edge_adjustment` (flips, splits, rounds, repairs);
+ * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range,
+ * and the domain's own figures from `r.domain_diagnostics`, written generically: a scalar, a vector or a
+ * matrix as rows); `cvt` (method, iterations, energy per iteration); `seconds` (wall time per stage and
+ * total). Real numbers have 10 significant digits; a non-finite one is `null`.
+ */
+inline nlohmann::json report_json(const Remeshing_result& r)
+{
+  using internal::report_number;
+  const Quality_report& q = r.quality;
+  nlohmann::json j;
+  j["domain"] = domain_name(r.domain);
+  j["input"] = {{"vertices", r.input_vertices}, {"faces", r.input_faces}};
+  j["background"] = {{"vertices", r.background_vertices}, {"faces", r.background_faces}};
+  j["output"] = {{"vertices", q.number_of_vertices},
+                 {"triangles", q.number_of_triangles},
+                 {"boundary_vertices", r.boundary_sites},
+                 {"corners", r.corners},
+                 {"inverted_triangles", r.inverted_triangles},
+                 {"hausdorff_distance", report_number(r.hausdorff_distance)},
+                 {"hausdorff_distance_relative", report_number(r.hausdorff_distance_relative)}};
+  j["quality"] = {{"G_min", report_number(q.G_min)},
+                  {"G_avg", report_number(q.G_avg)},
+                  {"theta_min", report_number(q.theta_min)},
+                  {"theta_avg", report_number(q.theta_avg)},
+                  {"percent_below_30", report_number(q.percent_below_30)},
+                  {"theta_max", report_number(q.theta_max)},
+                  {"angle_histogram",
+                   {{"bin_width_degrees", report_number(q.bin_width)}, {"counts", internal::report_numbers(q.angle_histogram)}}},
+                  {"metric_edge_length",
+                   {{"mean", report_number(q.edge_length_mean)},
+                    {"normalized_stddev", report_number(q.edge_length_stddev)},
+                    {"normalized_min", report_number(q.edge_length_min)},
+                    {"normalized_max", report_number(q.edge_length_max)}}}};
+  j["refinement"] = {{"vertices_before", r.refinement.vertices_before},
+                     {"vertices_after", r.refinement.vertices_after},
+                     {"splits", r.refinement.splits},
+                     {"output_edge_length", report_number(r.refinement.output_edge_length)},
+                     {"longest_edge", report_number(r.refinement.longest_edge)}};
+  j["edge_adjustment"] = {{"invalid_triangles_before", r.adjustment.invalid_triangles_before},
+                          {"flips", r.adjustment.flips},
+                          {"splits", r.adjustment.splits},
+                          {"rounds", r.adjustment.rounds},
+                          {"repaired_triangles", r.adjustment.repaired_triangles},
+                          {"mollification", report_number(r.adjustment.mollification)},
+                          {"flip_budget_hits", r.adjustment.flip_budget_hits}};
+  nlohmann::json& embedding = j["conformal_embedding"];
+  embedding = {{"newton_iterations", r.conformal_iterations},
+               {"residual", report_number(r.conformal_residual)},
+               {"intrinsic_flips", r.conformal_flips},
+               {"conformal_factor_min", report_number(r.conformal_factor_min)},
+               {"conformal_factor_max", report_number(r.conformal_factor_max)}};
+  for(const Domain_figure& f : r.domain_diagnostics.figures) embedding[f.key] = internal::domain_figure(f);
+  j["cvt"] = {{"method", r.cvt.method == Cvt_method::LLOYD ? "lloyd" : "lbfgs"},
+              {"iterations", r.cvt.iterations},
+              {"energy_evaluations", r.cvt.energy_evaluations},
+              {"lloyd_fallbacks", r.cvt.lloyd_fallbacks},
+              {"relative_gradient_norm", report_number(r.cvt.gradient_norm)},
+              {"energy", internal::report_numbers(r.cvt.energy)}};
+  nlohmann::json& seconds = j["seconds"];
+  for(int s = 0; s < number_of_stages; ++s) seconds[stage_name(Stage(s))] = report_number(r.seconds[s]);
+  seconds["total"] = report_number(r.total_seconds());
+  return j;
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
+ * writes `report_json(r)` to `os`, indented by 2, with the fields of `extra` added at the top level
+ * (e.g. the command line's parameters or the time spent building a background). Strings that are not
+ * valid UTF-8 (a file name, say) are written with U+FFFD in place of their invalid bytes.
+ * \throws Invalid_input if `extra` is neither null nor a JSON object, or has a key the report already has
  */
 inline void write_report_json(std::ostream& os, const Remeshing_result& r,
-                              const std::map<std::string, std::string>& extra = {})
+                              const nlohmann::json& extra = nlohmann::json::object())
 {
-  using internal::json_array;
-  using internal::json_number;
-  const Quality_report& q = r.quality;
-  os << "{\n";
-  for(const auto& e : extra) os << "  " << internal::json_string(e.first) << ": " << e.second << ",\n";
-  os << "  \"domain\": " << internal::json_string(domain_name(r.domain)) << ",\n";
-  os << "  \"input\": {\"vertices\": " << r.input_vertices << ", \"faces\": " << r.input_faces << "},\n";
-  os << "  \"background\": {\"vertices\": " << r.background_vertices << ", \"faces\": " << r.background_faces << "},\n";
-  os << "  \"output\": {\"vertices\": " << q.number_of_vertices << ", \"triangles\": " << q.number_of_triangles
-     << ", \"boundary_vertices\": " << r.boundary_sites << ", \"corners\": " << r.corners
-     << ", \"inverted_triangles\": " << r.inverted_triangles
-     << ", \"hausdorff_distance\": " << json_number(r.hausdorff_distance)
-     << ", \"hausdorff_distance_relative\": " << json_number(r.hausdorff_distance_relative) << "},\n";
-  os << "  \"quality\": {\"G_min\": " << json_number(q.G_min) << ", \"G_avg\": " << json_number(q.G_avg)
-     << ", \"theta_min\": " << json_number(q.theta_min) << ", \"theta_avg\": " << json_number(q.theta_avg)
-     << ", \"percent_below_30\": " << json_number(q.percent_below_30) << ", \"theta_max\": " << json_number(q.theta_max)
-     << ",\n    \"angle_histogram\": {\"bin_width_degrees\": " << json_number(q.bin_width)
-     << ", \"counts\": " << json_array(q.angle_histogram) << "},\n"
-     << "    \"metric_edge_length\": {\"mean\": " << json_number(q.edge_length_mean)
-     << ", \"normalized_stddev\": " << json_number(q.edge_length_stddev)
-     << ", \"normalized_min\": " << json_number(q.edge_length_min)
-     << ", \"normalized_max\": " << json_number(q.edge_length_max) << "}},\n";
-  os << "  \"edge_adjustment\": {\"invalid_triangles_before\": " << r.adjustment.invalid_triangles_before
-     << ", \"flips\": " << r.adjustment.flips << ", \"splits\": " << r.adjustment.splits
-     << ", \"rounds\": " << r.adjustment.rounds
-     << ", \"repaired_triangles\": " << r.adjustment.repaired_triangles
-     << ", \"mollification\": " << json_number(r.adjustment.mollification)
-     << ", \"flip_budget_hits\": " << r.adjustment.flip_budget_hits << "},\n";
-  os << "  \"conformal_embedding\": {\"newton_iterations\": " << r.conformal_iterations
-     << ", \"residual\": " << json_number(r.conformal_residual) << ", \"intrinsic_flips\": " << r.conformal_flips
-     << ", \"conformal_factor_min\": " << json_number(r.conformal_factor_min)
-     << ", \"conformal_factor_max\": " << json_number(r.conformal_factor_max);
-  // the domain's own figures, whatever the domain: scalars, vectors, matrices by rows
-  for(const Domain_figure& f : r.domain_diagnostics.figures) {
-    auto number = [&](double x) { return f.integral ? std::to_string((long long)(x)) : json_number(x); };
-    os << ", " << internal::json_string(f.key) << ": ";
-    if(f.values.empty()) {
-      os << "[]";
-      continue;
+  if(!extra.is_null() && !extra.is_object())
+    throw Invalid_input("write_report_json(): the extra fields must be a JSON object, not " + std::string(extra.type_name()));
+  nlohmann::json j = report_json(r);
+  if(extra.is_object())
+    for(const auto& e : extra.items()) {
+      if(j.contains(e.key()))
+        throw Invalid_input("write_report_json(): the extra field '" + e.key() + "' is a field of the report");
+      j[e.key()] = e.value();
     }
-    if(f.columns == 0 && f.values.size() == 1) {
-      os << number(f.values[0]);
-      continue;
-    }
-    const std::size_t cols = f.columns == 0 ? f.values.size() : f.columns;
-    os << (f.columns == 0 ? "" : "[");
-    for(std::size_t i = 0; i < f.values.size(); ++i) {
-      if(i % cols == 0) os << (i ? "], [" : "[");
-      else os << ", ";
-      os << number(f.values[i]);
-    }
-    os << "]" << (f.columns == 0 ? "" : "]");
-  }
-  os << "},\n";
-  os << "  \"cvt\": {\"method\": \"" << (r.cvt.method == Cvt_method::LLOYD ? "lloyd" : "lbfgs")
-     << "\", \"iterations\": " << r.cvt.iterations << ", \"energy_evaluations\": " << r.cvt.energy_evaluations
-     << ", \"lloyd_fallbacks\": " << r.cvt.lloyd_fallbacks
-     << ", \"relative_gradient_norm\": " << json_number(r.cvt.gradient_norm)
-     << ",\n    \"energy\": " << json_array(r.cvt.energy) << "},\n";
-  os << "  \"seconds\": {";
-  for(int s = 0; s < number_of_stages; ++s)
-    os << "\"" << stage_name(Stage(s)) << "\": " << json_number(r.seconds[s]) << ", ";
-  os << "\"total\": " << json_number(r.total_seconds()) << "}\n}\n";
+  os << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
 }
 
 } // namespace IO

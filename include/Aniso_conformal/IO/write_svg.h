@@ -60,6 +60,63 @@ inline void write_legend(std::ostream& out, double left, double y, double vmin, 
                 left - 5, y + 11, vmin, left + 305, y + 11, vmax);
   out << buf;
 }
+
+// the values of the cells of a CVT picture in colour classes: 20 classes from the smallest to the largest
+// finite value on the ramp, or one pale class when there are no values
+struct Colour_classes {
+  double vmin = 1e300, vmax = -1e300;
+  int count = 1;
+  explicit Colour_classes(const std::vector<double>& values)
+  {
+    for(double v : values)
+      if(std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
+    if(vmin > vmax) vmin = vmax = 0;
+    count = values.empty() ? 1 : 20;
+  }
+  // the class of `values[i]` (0 for a non-finite value, or when all values are equal)
+  int of(const std::vector<double>& values, std::size_t i) const
+  {
+    if(values.empty() || !(vmax > vmin) || !std::isfinite(values[i])) return 0;
+    return std::min(count - 1, std::max(0, int((values[i] - vmin) / (vmax - vmin) * count)));
+  }
+  // the filled paths of the classes, `paths[first + c]` for class c, skipping empty ones
+  void write_paths(std::ostream& out, const std::vector<std::string>& paths, std::size_t first, bool pale) const
+  {
+    for(int c = 0; c < count; ++c) {
+      const std::string& d = paths[first + std::size_t(c)];
+      if(d.empty()) continue;
+      out << "<path fill=\"" << (pale ? std::string("#eef2f8") : ramp((c + 0.5) / count)) << "\" d=\"" << d << "\"/>\n";
+    }
+  }
+};
+
+// appends a closed polygon to an SVG path: "M p0 L p1 p2 ... Z", each point as `xy` writes it
+template <typename Polygon, typename XY>
+void append_polygon(std::string& d, const Polygon& polygon, XY&& xy)
+{
+  for(std::size_t k = 0; k < polygon.size(); ++k) d += (k == 0 ? "M" : k == 1 ? "L" : " ") + xy(polygon[k]);
+  d += "Z";
+}
+
+// opens an SVG picture of `width` x `height` on white with `title` in its top left corner at x = `left`
+inline std::ofstream open_svg(const std::string& path, double width, double height, double left, const std::string& title)
+{
+  std::ofstream out(path);
+  if(!out) throw Invalid_input("cannot write " + path);
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
+                width, height, width, height);
+  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << escape(title) << "</text>\n";
+  return out;
+}
+
+// closes the picture
+inline void close_svg(std::ofstream& out, const std::string& path)
+{
+  out << "</svg>\n";
+  if(!out) throw Invalid_input("cannot write " + path);
+}
 } // namespace internal
 
 /*!
@@ -167,39 +224,21 @@ inline void write_hyperbolic_cvt_svg(const std::string& path, const std::vector<
     std::snprintf(buf, sizeof(buf), "%.2f,%.2f", left + R + R * p.x(), top + R - R * p.y());
     return std::string(buf);
   };
-  double vmin = 1e300, vmax = -1e300;
-  for(double v : values)
-    if(std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
-  if(vmin > vmax) vmin = vmax = 0;
-  const int classes = values.empty() ? 1 : 20;
-  std::vector<std::string> paths(static_cast<std::size_t>(classes));
+  const internal::Colour_classes classes(values);
+  std::vector<std::string> paths(static_cast<std::size_t>(classes.count));
   for(std::size_t i = 0; i < cells.size(); ++i) {
     const std::vector<Eigen::Vector2d>& cell = cells[i];
     if(cell.size() < 3) continue;
     bool finite = true;
     for(const auto& p : cell) finite = finite && p.allFinite() && p.squaredNorm() < 1;
     if(!finite) continue;
-    int c = 0;
-    if(!values.empty() && vmax > vmin && std::isfinite(values[i]))
-      c = std::min(classes - 1, std::max(0, int((values[i] - vmin) / (vmax - vmin) * classes)));
-    std::string& d = paths[std::size_t(c)];
-    for(std::size_t k = 0; k < cell.size(); ++k) d += (k == 0 ? "M" : k == 1 ? "L" : " ") + xy(cell[k]);
-    d += "Z";
+    internal::append_polygon(paths[std::size_t(classes.of(values, i))], cell, xy);
   }
-  std::ofstream out(path);
-  if(!out) throw Invalid_input("cannot write " + path);
-  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
-                width, height, width, height);
-  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
+  std::ofstream out = internal::open_svg(path, width, height, left, title);
   std::snprintf(buf, sizeof(buf), "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%.1f\" fill=\"#f6f6f6\" stroke=\"black\" stroke-width=\"1\"/>\n", left + R,
                 top + R, R);
   out << buf << "<g stroke=\"#333\" stroke-width=\"0.25\" stroke-linejoin=\"round\">\n";
-  for(int c = 0; c < classes; ++c) {
-    if(paths[std::size_t(c)].empty()) continue;
-    out << "<path fill=\"" << (values.empty() ? std::string("#eef2f8") : internal::ramp((c + 0.5) / classes)) << "\" d=\""
-        << paths[std::size_t(c)] << "\"/>\n";
-  }
+  classes.write_paths(out, paths, 0, values.empty());
   out << "</g>\n<path fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-width=\"1.2\" d=\"";
   for(const Eigen::Vector2d& p : sites)
     if(p.allFinite()) out << "M" << xy(p) << "h0";
@@ -209,9 +248,8 @@ inline void write_hyperbolic_cvt_svg(const std::string& path, const std::vector<
   std::snprintf(buf, sizeof(buf), "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%zu sites; blue: the cut of the fundamental domain</text>\n",
                 left, 2 * R + top + 29, sites.size());
   out << buf;
-  if(!values.empty()) internal::write_legend(out, width - 360, 2 * R + top + 18, vmin, vmax);
-  out << "</svg>\n";
-  if(!out) throw Invalid_input("cannot write " + path);
+  if(!values.empty()) internal::write_legend(out, width - 360, 2 * R + top + 18, classes.vmin, classes.vmax);
+  internal::close_svg(out, path);
 }
 
 /*!
@@ -266,12 +304,8 @@ inline void write_periodic_cvt_svg(const std::string& path, const std::array<Eig
   };
 
   // cell polygons grouped by colour (20 classes of the value), each with the translates meeting the cell
-  double vmin = 1e300, vmax = -1e300;
-  for(double v : values)
-    if(std::isfinite(v)) { vmin = std::min(vmin, v); vmax = std::max(vmax, v); }
-  if(vmin > vmax) vmin = vmax = 0;
-  const int classes = values.empty() ? 1 : 20;
-  std::vector<std::string> paths(static_cast<std::size_t>(classes));
+  const internal::Colour_classes classes(values);
+  std::vector<std::string> paths(static_cast<std::size_t>(classes.count));
   for(std::size_t i = 0; i < cells.size(); ++i) {
     const std::vector<Eigen::Vector2d>& cell = cells[i];
     if(cell.empty()) continue;
@@ -281,34 +315,21 @@ inline void write_periodic_cvt_svg(const std::string& path, const std::array<Eig
       s0 = std::min(s0, st.x()); s1 = std::max(s1, st.x()); t0 = std::min(t0, st.y()); t1 = std::max(t1, st.y());
     }
     if(!(std::isfinite(s0) && std::isfinite(s1) && std::isfinite(t0) && std::isfinite(t1))) continue;
-    int c = 0;
-    if(!values.empty() && vmax > vmin && std::isfinite(values[i]))
-      c = std::min(classes - 1, std::max(0, int((values[i] - vmin) / (vmax - vmin) * classes)));
-    std::string& d = paths[std::size_t(c)];
+    std::string& d = paths[std::size_t(classes.of(values, i))];
     for(int di = int(std::floor(-s1)); di <= int(std::ceil(1 - s0)); ++di)
       for(int dj = int(std::floor(-t1)); dj <= int(std::ceil(1 - t0)); ++dj) {
         if(!(s0 + di < 1 && s1 + di > 0 && t0 + dj < 1 && t1 + dj > 0)) continue;
         const Eigen::Vector2d shift = double(di) * a + double(dj) * b;
-        for(std::size_t k = 0; k < cell.size(); ++k) d += (k == 0 ? "M" : k == 1 ? "L" : " ") + xy(cell[k] + shift);
-        d += "Z";
+        internal::append_polygon(d, cell, [&](const Eigen::Vector2d& p) { return xy(p + shift); });
       }
   }
 
-  std::ofstream out(path);
-  if(!out) throw Invalid_input("cannot write " + path);
-  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
-                width, height, width, height);
-  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
+  std::ofstream out = internal::open_svg(path, width, height, left, title);
   std::string outline;
   for(int k = 0; k < 4; ++k) outline += (k ? " " : "") + xy(corner[std::size_t(k)]);
   out << "<defs><clipPath id=\"fundamental_cell\"><polygon points=\"" << outline << "\"/></clipPath></defs>\n";
   out << "<g clip-path=\"url(#fundamental_cell)\" stroke=\"#333\" stroke-width=\"0.25\" stroke-linejoin=\"round\">\n";
-  for(int c = 0; c < classes; ++c) {
-    if(paths[std::size_t(c)].empty()) continue;
-    out << "<path fill=\"" << (values.empty() ? std::string("#eef2f8") : internal::ramp((c + 0.5) / classes)) << "\" d=\""
-        << paths[std::size_t(c)] << "\"/>\n";
-  }
+  classes.write_paths(out, paths, 0, values.empty());
   out << "</g>\n";
   // the sites as dots (zero-length segments with round caps) whose size follows their cell's, in classes of 0.1 px
   const double spacing = std::sqrt(std::abs(det) / double(std::max<std::size_t>(1, sites.size()))) * scale;
@@ -334,9 +355,8 @@ inline void write_periodic_cvt_svg(const std::string& path, const std::array<Eig
                 "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%zu sites; a = (%.3g, %.3g), b = (%.3g, %.3g)</text>\n",
                 left, H + top + 29, sites.size(), a.x(), a.y(), b.x(), b.y());
   out << buf;
-  if(!values.empty()) internal::write_legend(out, width - 360, H + top + 18, vmin, vmax);
-  out << "</svg>\n";
-  if(!out) throw Invalid_input("cannot write " + path);
+  if(!values.empty()) internal::write_legend(out, width - 360, H + top + 18, classes.vmin, classes.vmax);
+  internal::close_svg(out, path);
 }
 
 /*!
@@ -371,13 +391,9 @@ inline void write_spherical_cvt_svg(const std::string& path, const std::vector<E
   const Eigen::Vector3d v = (up - up.dot(w) * w).normalized(), u = v.cross(w);
   const double R = 400, left = 20, top = 40, gap = 40, width = 2 * (2 * R) + gap + 2 * left, height = 2 * R + top + 60;
   char buf[256];
-  double vmin = 1e300, vmax = -1e300;
-  for(double x : values)
-    if(std::isfinite(x)) { vmin = std::min(vmin, x); vmax = std::max(vmax, x); }
-  if(vmin > vmax) vmin = vmax = 0;
-  const int classes = values.empty() ? 1 : 20;
+  const internal::Colour_classes classes(values);
   // per view (0 front, 1 back: mirrored so that the back is seen from behind), per colour class, the path
-  std::vector<std::string> paths(std::size_t(2 * classes));
+  std::vector<std::string> paths(std::size_t(2 * classes.count));
   std::string dots[2];
   for(int view = 0; view < 2; ++view) {
     const Eigen::Vector3d W = view == 0 ? w : Eigen::Vector3d(-w), U = view == 0 ? u : Eigen::Vector3d(-u);
@@ -392,30 +408,16 @@ inline void write_spherical_cvt_svg(const std::string& path, const std::vector<E
     };
     for(std::size_t i = 0; i < sites.size(); ++i) {
       if(!sites[i].allFinite() || sites[i].dot(W) < 0 || cells[i].size() < 3) continue;
-      int c = 0;
-      if(!values.empty() && vmax > vmin && std::isfinite(values[i]))
-        c = std::min(classes - 1, std::max(0, int((values[i] - vmin) / (vmax - vmin) * classes)));
-      std::string& d = paths[std::size_t(view * classes + c)];
-      for(std::size_t k = 0; k < cells[i].size(); ++k) d += (k == 0 ? "M" : k == 1 ? "L" : " ") + xy(cells[i][k]);
-      d += "Z";
+      internal::append_polygon(paths[std::size_t(view * classes.count + classes.of(values, i))], cells[i], xy);
       dots[view] += "M" + xy(sites[i]) + "h0";
     }
   }
 
-  std::ofstream out(path);
-  if(!out) throw Invalid_input("cannot write " + path);
-  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
-                width, height, width, height);
-  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
+  std::ofstream out = internal::open_svg(path, width, height, left, title);
   for(int view = 0; view < 2; ++view) {
     const double cx = left + R + view * (2 * R + gap), cy = top + R;
     out << "<g stroke=\"#333\" stroke-width=\"0.3\" stroke-linejoin=\"round\">\n";
-    for(int c = 0; c < classes; ++c) {
-      const std::string& d = paths[std::size_t(view * classes + c)];
-      if(d.empty()) continue;
-      out << "<path fill=\"" << (values.empty() ? std::string("#eef2f8") : internal::ramp((c + 0.5) / classes)) << "\" d=\"" << d << "\"/>\n";
-    }
+    classes.write_paths(out, paths, std::size_t(view * classes.count), values.empty());
     out << "</g>\n";
     if(!dots[view].empty())
       out << "<path fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-width=\"2\" d=\"" << dots[view] << "\"/>\n";
@@ -428,9 +430,8 @@ inline void write_spherical_cvt_svg(const std::string& path, const std::vector<E
   std::snprintf(buf, sizeof(buf), "<text x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\">%zu sites</text>\n", left,
                 top + 2 * R + 40, sites.size());
   out << buf;
-  if(!values.empty()) internal::write_legend(out, width - 360, top + 2 * R + 30, vmin, vmax);
-  out << "</svg>\n";
-  if(!out) throw Invalid_input("cannot write " + path);
+  if(!values.empty()) internal::write_legend(out, width - 360, top + 2 * R + 30, classes.vmin, classes.vmax);
+  internal::close_svg(out, path);
 }
 
 /*!
@@ -500,13 +501,8 @@ inline void write_surface_svg(const std::string& path, const std::vector<Eigen::
   const double box = 800, scale = box / std::max({1e-300, x1 - x0, y1 - y0}), W = (x1 - x0) * scale, H = (y1 - y0) * scale;
   const double left = 20, top = 40, bottom = 50, width = std::max(W + 2 * left, 760.0), height = H + top + bottom;
   const double offset = left + (width - 2 * left - W) / 2;  // centred
-  std::ofstream out(path);
-  if(!out) throw Invalid_input("cannot write " + path);
+  std::ofstream out = internal::open_svg(path, width, height, left, title);
   char buf[256];
-  std::snprintf(buf, sizeof(buf), "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
-                width, height, width, height);
-  out << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << "<text x=\"" << left << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" << internal::escape(title) << "</text>\n";
   out << "<g stroke=\"#222\" stroke-opacity=\"0.45\" stroke-width=\"0.25\" stroke-linejoin=\"round\">\n";
   for(const Visible& t : visible) {
     const double value =
@@ -525,8 +521,7 @@ inline void write_surface_svg(const std::string& path, const std::vector<Eigen::
   }
   out << "</g>\n";
   internal::write_legend(out, width - 360, H + top + 18, vmin, vmax);
-  out << "</svg>\n";
-  if(!out) throw Invalid_input("cannot write " + path);
+  internal::close_svg(out, path);
 }
 
 } // namespace IO

@@ -15,6 +15,7 @@ namespace internal {
 // Mass, first moment and CVT energy of a linear density over a region, accumulated exactly.
 struct Cell_accumulator {
   double mass = 0, mx = 0, my = 0, energy = 0;
+  void operator+=(const Cell_accumulator& o) { mass += o.mass; mx += o.mx; my += o.my; energy += o.energy; }
 };
 
 // A convex polygon with a fixed capacity: clipping a triangle by the half-planes of one Voronoi cell adds

@@ -5,6 +5,8 @@
 #define ANISO_CONFORMAL_INTERNAL_CVT_RESTRICTED_VORONOI_H
 
 #include <Aniso_conformal/internal/CVT/clip_integrate.h>
+#include <Aniso_conformal/internal/CVT/restricted_voronoi_kernel.h>
+#include <Aniso_conformal/internal/CVT/stratified_samples.h>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -14,13 +16,13 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
-#include <thread>
 #include <utility>
 #include <vector>
 
 // The parts of a Euclidean domain's CVT that do not depend on the domain's shape: background triangles
-// with a linear density, their exact integration against the Voronoi cells of a set of sites (restricted
-// Voronoi diagram), a Morton order, a point-location grid. The plane and the flat torus share them.
+// with a linear density, their exact integration against the Voronoi cells of a set of sites (the cell
+// geometry of the restricted-Voronoi kernel), a Morton order, a point-location grid. The plane and the
+// flat torus share them; the sphere and the Klein disk use the background triangles in frames of their own.
 
 namespace Aniso_conformal {
 namespace internal {
@@ -82,25 +84,8 @@ inline std::vector<std::size_t> morton_order(const std::vector<Eigen::Vector2d>&
   return order;
 }
 
-// runs work(0 .. chunks-1) on up to `threads` threads
-template <typename Work>
-void run_chunks(unsigned threads, std::size_t chunks, Work& work)
-{
-  const unsigned nt = std::min<unsigned>(threads, unsigned(chunks));
-  if(nt <= 1) {
-    for(std::size_t c = 0; c < chunks; ++c) work(c);
-    return;
-  }
-  std::vector<std::thread> pool;
-  for(unsigned t = 0; t < nt; ++t)
-    pool.emplace_back([&, t]() {
-      for(std::size_t c = t; c < chunks; c += nt) work(c);
-    });
-  for(auto& th : pool) th.join();
-}
-
 // The Delaunay neighbours of every site in CSR form (neighbours of i: nbr[start[i] .. start[i+1])), from a
-// CGAL Delaunay_triangulation_2 whose vertex info is the site index; handle[i] is site i's vertex (a
+// CGAL Delaunay or regular triangulation whose vertex info is the site index; handle[i] is site i's vertex (a
 // default handle, or one whose info differs, for a site that coincides with another: it keeps no cell).
 template <typename DT>
 void delaunay_neighbours(const DT& dt, const std::vector<typename DT::Vertex_handle>& handle, std::vector<int>& start,
@@ -120,118 +105,90 @@ void delaunay_neighbours(const DT& dt, const std::vector<typename DT::Vertex_han
   start[ns] = int(nbr.size());
 }
 
-/*
- * Integrates the density of the triangles `tri` over the Voronoi cells of `sites` (Delaunay neighbours
- * in CSR form): out[i] receives the mass, first moment and energy (about sites[i]) of the part of the
- * triangles nearer to sites[i] than to any other site. Each triangle is clipped against the cells it
- * meets, found by a greedy walk on the Delaunay graph to the site nearest to a corner (exact for
- * Delaunay graphs) and a flood over the neighbours whose cells can meet it. Fixed chunks summed in
- * order: the result does not depend on the number of threads.
- */
+// The Voronoi cell of every site with a vertex in the CGAL triangulation `dt` (vertex info: the site
+// index; handle[i] as in delaunay_neighbours()), as the polygon of the centres circumcenter(face) of its
+// finite incident faces, counterclockwise; empty for a site without a vertex. For pictures.
+template <typename DT, typename Centre>
+std::vector<std::vector<Eigen::Vector2d>> voronoi_polygons(const DT& dt, const std::vector<typename DT::Vertex_handle>& handle,
+                                                           std::size_t ns, const Centre& circumcenter)
+{
+  std::vector<std::vector<Eigen::Vector2d>> cells(ns);
+  for(std::size_t i = 0; i < ns; ++i) {
+    if(handle[i] == typename DT::Vertex_handle() || handle[i]->info() != int(i)) continue;
+    auto f = dt.incident_faces(handle[i]), done = f;
+    do {
+      if(!dt.is_infinite(f)) {
+        const auto c = circumcenter(f);
+        cells[i].emplace_back(c.x(), c.y());
+      }
+    } while(++f != done);
+  }
+  return cells;
+}
+
+// the integrals of a linear density over the whole of T about the point s (in T's frame): the
+// parallel-axis theorem on T's precomputed moments
+inline Cell_accumulator whole_triangle_moments(const Background_triangle& T, const Eigen::Vector2d& s)
+{
+  const Eigen::Vector2d d = T.g - s;
+  Cell_accumulator A;
+  A.mass = T.mass;
+  A.mx = T.first.x() + T.mass * T.g.x();
+  A.my = T.first.y() + T.mass * T.g.y();
+  A.energy = T.central + 2 * d.dot(T.first) + d.squaredNorm() * T.mass;
+  return A;
+}
+
+// The cell geometry of a Euclidean domain (integrate_restricted_voronoi()): the triangles are laid out
+// in the plane itself, distances are Euclidean, the bisector of s and n is 2 (x_n - x_s).y <= |x_n|^2 -
+// |x_s|^2, and the integrals of the linear density over a piece have closed forms.
+class Euclidean_cell_geometry {
+public:
+  typedef Cell_accumulator Accumulator;
+  Euclidean_cell_geometry(const std::vector<Background_triangle>& tri, const std::vector<Eigen::Vector2d>& sites)
+    : m_tri(tri), m_sites(sites)
+  {}
+  std::size_t number_of_triangles() const { return m_tri.size(); }
+  const Background_triangle& triangle(std::size_t f) const { return m_tri[f]; }
+  bool in_one_cell(std::size_t, int&) const { return false; }
+  int walk_start(std::size_t, int previous) const { return previous; }  // the triangles are in Morton order
+  const Eigen::Vector2d& walk_target(std::size_t f) const { return m_tri[f].p[0]; }
+  double distance(int s, const Eigen::Vector2d& y) const { return (m_sites[std::size_t(s)] - y).squaredNorm(); }
+  Bisector bisector(std::size_t, int s, int n, Eigen::Vector2d& a, double& b) const
+  {
+    const Eigen::Vector2d &pn = m_sites[std::size_t(n)], &ps = m_sites[std::size_t(s)];
+    a = 2.0 * (pn - ps);
+    b = pn.squaredNorm() - ps.squaredNorm();
+    return Bisector::untested;
+  }
+  void add_piece(std::size_t f, int s, const Small_polygon& poly, Accumulator& acc) const
+  {
+    integrate_polygon(poly.p, std::size_t(poly.n), m_tri[f].r0, m_tri[f].rg, m_sites[std::size_t(s)], acc);
+  }
+  void add_whole(std::size_t f, int s, Accumulator& acc) const { acc += whole_triangle_moments(m_tri[f], m_sites[std::size_t(s)]); }
+
+private:
+  const std::vector<Background_triangle>& m_tri;
+  const std::vector<Eigen::Vector2d>& m_sites;
+};
+
+// out[i]: mass, first moment and energy (about sites[i]) of the part of the triangles `tri` (in Morton
+// order) nearer to sites[i] than to any other site (Delaunay neighbours in CSR form); see
+// integrate_restricted_voronoi(policy, ...)
 inline void integrate_restricted_voronoi(const std::vector<Background_triangle>& tri, const std::vector<Eigen::Vector2d>& sites,
                                          const std::vector<int>& start, const std::vector<int>& nbr, unsigned threads,
                                          std::vector<Cell_accumulator>& out)
 {
-  const std::size_t ns = sites.size(), chunks = 16, nf = tri.size();
-  std::vector<std::vector<Cell_accumulator>> acc(chunks, std::vector<Cell_accumulator>(ns));
-  int any_site = 0;
-  while(any_site < int(ns) && start[any_site] == start[any_site + 1] && ns > 1) ++any_site;
-  auto work = [&](std::size_t chunk) {
-    std::vector<int> stamp(ns, -1), stack;
-    Small_polygon poly_a, poly_b;
-    int seed = any_site;
-    for(std::size_t f = chunk * nf / chunks; f < (chunk + 1) * nf / chunks; ++f) {
-      const Background_triangle& T = tri[f];
-      // triangles are in Morton order, so the previous seed is close
-      double best = (sites[seed] - T.p[0]).squaredNorm();
-      for(bool moved = true; moved;) {
-        moved = false;
-        for(int j = start[seed]; j < start[seed + 1]; ++j) {
-          const double d = (sites[nbr[j]] - T.p[0]).squaredNorm();
-          if(d < best) { best = d; seed = nbr[j]; moved = true; break; }
-        }
-      }
-      stack.assign(1, seed);
-      stamp[seed] = int(f);
-      while(!stack.empty()) {
-        const int s = stack.back();
-        stack.pop_back();
-        Small_polygon* poly = &poly_a;
-        Small_polygon* tmp = &poly_b;
-        poly->assign(T.p[0], T.p[1], T.p[2]);
-        const Eigen::Vector2d& ps = sites[s];
-        bool clipped = false;
-        for(int j = start[s]; j < start[s + 1] && poly->n >= 3; ++j) {
-          const Eigen::Vector2d& pn = sites[nbr[j]];
-          if(clip_half_plane(*poly, 2.0 * (pn - ps), pn.squaredNorm() - ps.squaredNorm(), *tmp)) {
-            clipped = true;
-            std::swap(poly, tmp);
-          }
-        }
-        if(poly->n < 3) continue;
-        if(clipped) {
-          integrate_polygon(poly->p, std::size_t(poly->n), T.r0, T.rg, ps, acc[chunk][s]);
-        } else {
-          // the whole triangle is in the cell: parallel-axis theorem on the precomputed moments
-          Cell_accumulator& A = acc[chunk][s];
-          const Eigen::Vector2d d = T.g - ps;
-          A.mass += T.mass;
-          A.mx += T.first.x() + T.mass * T.g.x();
-          A.my += T.first.y() + T.mass * T.g.y();
-          A.energy += T.central + 2 * d.dot(T.first) + d.squaredNorm() * T.mass;
-          continue;  // no neighbour's cell meets T
-        }
-        for(int j = start[s]; j < start[s + 1]; ++j) {
-          const int n = nbr[j];
-          if(stamp[n] == int(f)) continue;
-          // n's cell can meet T only if a corner of T is closer to n than to s
-          const Eigen::Vector2d a = 2.0 * (sites[n] - ps);
-          const double b = sites[n].squaredNorm() - ps.squaredNorm();
-          if(a.dot(T.p[0]) <= b && a.dot(T.p[1]) <= b && a.dot(T.p[2]) <= b) continue;
-          stamp[n] = int(f);
-          stack.push_back(n);
-        }
-      }
-    }
-  };
-  run_chunks(threads, chunks, work);
-  out.assign(ns, Cell_accumulator());
-  for(std::size_t i = 0; i < ns; ++i)
-    for(std::size_t c = 0; c < chunks; ++c) {
-      out[i].mass += acc[c][i].mass;
-      out[i].mx += acc[c][i].mx;
-      out[i].my += acc[c][i].my;
-      out[i].energy += acc[c][i].energy;
-    }
+  integrate_restricted_voronoi(Euclidean_cell_geometry(tri, sites), sites.size(), start, nbr, first_connected_site(start), threads,
+                               out);
 }
 
-// m points spread over the density of `tri` (in Morton order): evenly spaced quantiles of the mass
-// along the curve, shifted by one random offset, then a random point in the chosen triangle, shrunk
-// towards its centroid so that no point starts on an edge. A space-filling-curve sample is already well
-// spread, so the CVT starts close to its optimum; the generator changes both the offset and the points.
-inline std::vector<Eigen::Vector2d> stratified_samples(const std::vector<Background_triangle>& tri, std::size_t m,
-                                                       std::mt19937_64& rng)
+// m points spread over the density of the triangles `tri` (in Morton order): stratified_samples()
+inline std::vector<Eigen::Vector2d> stratified_samples(const std::vector<Background_triangle>& tri, std::size_t m, std::mt19937_64& rng)
 {
-  std::vector<double> cdf(tri.size());
-  double acc = 0;
-  for(std::size_t f = 0; f < tri.size(); ++f) {
-    acc += tri[f].mass;
-    cdf[f] = acc;
-  }
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  const double offset = U(rng);
-  std::vector<Eigen::Vector2d> out;
-  out.reserve(m);
-  for(std::size_t k = 0; k < m; ++k) {
-    const double r = (double(k) + offset) / double(m) * acc;
-    const std::size_t f = std::min(tri.size() - 1, std::size_t(std::lower_bound(cdf.begin(), cdf.end(), r) - cdf.begin()));
-    double a = U(rng), b = U(rng);
-    if(a + b > 1) { a = 1 - a; b = 1 - b; }
-    const Background_triangle& T = tri[f];
-    const Eigen::Vector2d p = T.p[0] + a * (T.p[1] - T.p[0]) + b * (T.p[2] - T.p[0]);
-    out.push_back(T.g + 0.98 * (p - T.g));
-  }
-  return out;
+  return stratified_samples(
+      tri.size(), [&](std::size_t f) { return tri[f].mass; },
+      [&](std::size_t f) -> const std::array<Eigen::Vector2d, 3>& { return tri[f].p; }, m, rng);
 }
 
 // A uniform grid over triangles for point location (about two triangles per cell).

@@ -21,7 +21,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <random>
 #include <utility>
 #include <vector>
 
@@ -51,6 +50,7 @@ struct Spherical_cell_accumulator {
   double mass = 0;
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
   double energy = 0;
+  void operator+=(const Spherical_cell_accumulator& o) { mass += o.mass; moment += o.moment; energy += o.energy; }
 };
 
 // The frame of the triangle p (origin at p[0], e1 along p[0]p[1]); false if the triangle is degenerate
@@ -183,6 +183,78 @@ inline void sphere_delaunay_neighbours(const Sphere_delaunay& sd, std::vector<in
   start[ns] = int(nbr.size());
 }
 
+// The cell geometry of the sphere (integrate_restricted_voronoi()): each chordal triangle is clipped
+// in its own frame, where the bisector of unit sites s and n, 2 y.(x_n - x_s) <= |x_n|^2 - |x_s|^2, is a
+// half-plane; it is first tested on the corners in space (most bisectors of a cell miss a small
+// triangle). A triangle whose three corners have the same nearest site (`owner`) lies in that site's
+// convex cell and is added whole; the walk for the others goes from the nearest site of the first corner
+// to the site nearest to the centroid, whose cell meets the triangle in a piece of positive area even
+// on a tie (the plane of T does not pass through the centre, so it cuts the cell's cone through the
+// centroid), which a corner's nearest site does not guarantee (a corner on a Voronoi vertex).
+class Spherical_cell_geometry {
+public:
+  typedef Spherical_cell_accumulator Accumulator;
+  Spherical_cell_geometry(const std::vector<Spherical_background_triangle>& tri, const std::vector<Eigen::Vector3d>& sites,
+                          const std::vector<double>& squared_norm, const std::vector<int>& owner)
+    : m_tri(tri), m_sites(sites), m_sq(squared_norm), m_owner(owner)
+  {}
+  std::size_t number_of_triangles() const { return m_tri.size(); }
+  const Background_triangle& triangle(std::size_t f) const { return m_tri[f].flat; }
+  bool in_one_cell(std::size_t f, int& s) const
+  {
+    const auto& v = m_tri[f].v;
+    s = m_owner[std::size_t(v[0])];
+    return s == m_owner[std::size_t(v[1])] && s == m_owner[std::size_t(v[2])];
+  }
+  int walk_start(std::size_t f, int) const { return m_owner[std::size_t(m_tri[f].v[0])]; }
+  const Eigen::Vector3d& walk_target(std::size_t f) const { return m_tri[f].g; }
+  double distance(int s, const Eigen::Vector3d& y) const { return -m_sites[std::size_t(s)].dot(y); }  // unit sites
+  Bisector bisector(std::size_t f, int s, int n, Eigen::Vector2d& a, double& b) const
+  {
+    // y nearer to s than to n:  2 y.(x_n - x_s) <= |x_n|^2 - |x_s|^2
+    const Spherical_background_triangle& S = m_tri[f];
+    const Eigen::Vector3d w = m_sites[std::size_t(n)] - m_sites[std::size_t(s)];
+    const double c = m_sq[std::size_t(n)] - m_sq[std::size_t(s)];
+    if(2 * S.p[0].dot(w) <= c && 2 * S.p[1].dot(w) <= c && 2 * S.p[2].dot(w) <= c) return Bisector::misses;
+    // the half-plane in the frame, y = o + u e1 + v e2
+    a = Eigen::Vector2d(2 * S.e1.dot(w), 2 * S.e2.dot(w));
+    b = c - 2 * S.o.dot(w);
+    return Bisector::meets;
+  }
+  void add_piece(std::size_t f, int s, const Small_polygon& poly, Accumulator& acc) const
+  {
+    const Background_triangle& T = m_tri[f].flat;
+    Cell_accumulator A;
+    integrate_polygon(poly.p, std::size_t(poly.n), T.r0, T.rg, foot(f, s), A);
+    add(f, s, A, acc);
+  }
+  void add_whole(std::size_t f, int s, Accumulator& acc) const { add(f, s, whole_triangle_moments(m_tri[f].flat, foot(f, s)), acc); }
+
+private:
+  // the site's foot on the plane of T, in T's frame
+  Eigen::Vector2d foot(std::size_t f, int s) const
+  {
+    const Spherical_background_triangle& S = m_tri[f];
+    const Eigen::Vector3d ds = m_sites[std::size_t(s)] - S.o;
+    return Eigen::Vector2d(S.e1.dot(ds), S.e2.dot(ds));
+  }
+  // a piece's integrals in the frame, to space: |y - x|^2 = |(u, v) - foot|^2 + h^2
+  void add(std::size_t f, int s, const Cell_accumulator& A, Accumulator& C) const
+  {
+    const Spherical_background_triangle& S = m_tri[f];
+    const Eigen::Vector3d ds = m_sites[std::size_t(s)] - S.o;
+    const double hs = S.n.dot(ds);  // the site's height over the plane
+    C.mass += A.mass;
+    C.moment += A.mass * S.o + A.mx * S.e1 + A.my * S.e2;
+    C.energy += A.energy + hs * hs * A.mass;
+  }
+
+  const std::vector<Spherical_background_triangle>& m_tri;
+  const std::vector<Eigen::Vector3d>& m_sites;
+  const std::vector<double>& m_sq;
+  const std::vector<int>& m_owner;
+};
+
 /*
  * Integrates the density of the chordal triangles `tri` (in Morton order; their corners index `vertices`,
  * also in Morton order) over the Voronoi cells of the unit `sites`: out[i] receives the mass, the first
@@ -191,12 +263,8 @@ inline void sphere_delaunay_neighbours(const Sphere_delaunay& sd, std::vector<in
  *
  * First the site nearest to every background vertex, by a greedy walk on the Delaunay graph (exact: the
  * graph holds the edges of the convex hull of the sites, on which a linear function has no local maximum
- * but the global one). A triangle whose three corners have the same nearest site lies in that site's
- * (convex) cell and is added whole, from its precomputed moments; most triangles are. The others are
- * clipped as in integrate_restricted_voronoi(): from the site nearest to the centroid, a flood over the
- * neighbours whose cells can meet the triangle, each cell's piece clipped by the bisectors that cut the
- * triangle (tested on its corners in space first: most bisectors of a cell miss a small triangle).
- * Fixed chunks summed in order: the result does not depend on the number of threads.
+ * but the global one), in fixed chunks; then integrate_restricted_voronoi() with the sphere's cell
+ * geometry. The result does not depend on the number of threads.
  */
 inline void integrate_spherical_restricted_voronoi(const std::vector<Spherical_background_triangle>& tri,
                                                    const std::vector<Eigen::Vector3d>& vertices,
@@ -204,142 +272,17 @@ inline void integrate_spherical_restricted_voronoi(const std::vector<Spherical_b
                                                    const std::vector<int>& nbr, int first, unsigned threads,
                                                    std::vector<Spherical_cell_accumulator>& out)
 {
-  const std::size_t ns = sites.size(), chunks = 16, nf = tri.size(), nv = vertices.size();
+  const std::size_t ns = sites.size(), chunks = 16, nv = vertices.size();
   std::vector<double> sq(ns);
   for(std::size_t i = 0; i < ns; ++i) sq[i] = sites[i].squaredNorm();
-  // the greedy walk to the site with the largest dot product with y, from `seed`
-  auto walk = [&](int seed, const Eigen::Vector3d& y) {
-    double best = sites[seed].dot(y);
-    for(bool moved = true; moved;) {
-      moved = false;
-      for(int j = start[seed]; j < start[seed + 1]; ++j) {
-        const double d = sites[nbr[j]].dot(y);
-        if(d > best) { best = d; seed = nbr[j]; moved = true; break; }
-      }
-    }
-    return seed;
-  };
   std::vector<int> owner(nv);
   auto owners = [&](std::size_t chunk) {
     int seed = first;
-    for(std::size_t v = chunk * nv / chunks; v < (chunk + 1) * nv / chunks; ++v) owner[v] = seed = walk(seed, vertices[v]);
+    for(std::size_t v = chunk * nv / chunks; v < (chunk + 1) * nv / chunks; ++v)
+      owner[v] = seed = greedy_walk(seed, start, nbr, [&](int i) { return -sites[std::size_t(i)].dot(vertices[v]); });
   };
   run_chunks(threads, chunks, owners);
-
-  std::vector<std::vector<Spherical_cell_accumulator>> acc(chunks, std::vector<Spherical_cell_accumulator>(ns));
-  auto work = [&](std::size_t chunk) {
-    std::vector<int> stamp(ns, -1), stack, cuts;
-    Small_polygon poly_a, poly_b;
-    for(std::size_t f = chunk * nf / chunks; f < (chunk + 1) * nf / chunks; ++f) {
-      const Spherical_background_triangle& S = tri[f];
-      const Background_triangle& T = S.flat;
-      auto add = [&](int s, const Cell_accumulator& A) {  // a piece in the frame, to space
-        const Eigen::Vector3d ds = sites[s] - S.o;
-        const double hs = S.n.dot(ds);  // the site's height over the plane
-        Spherical_cell_accumulator& C = acc[chunk][std::size_t(s)];
-        C.mass += A.mass;
-        C.moment += A.mass * S.o + A.mx * S.e1 + A.my * S.e2;
-        C.energy += A.energy + hs * hs * A.mass;
-      };
-      auto add_whole = [&](int s) {  // parallel-axis theorem on the precomputed moments
-        const Eigen::Vector3d ds = sites[s] - S.o;
-        const Eigen::Vector2d d = T.g - Eigen::Vector2d(S.e1.dot(ds), S.e2.dot(ds));
-        Cell_accumulator A;
-        A.mass = T.mass;
-        A.mx = T.first.x() + T.mass * T.g.x();
-        A.my = T.first.y() + T.mass * T.g.y();
-        A.energy = T.central + 2 * d.dot(T.first) + d.squaredNorm() * T.mass;
-        add(s, A);
-      };
-      const int o0 = owner[std::size_t(S.v[0])];
-      if(o0 == owner[std::size_t(S.v[1])] && o0 == owner[std::size_t(S.v[2])]) {
-        add_whole(o0);
-        continue;
-      }
-      // The site nearest to the centroid: its cell meets T in a piece of positive area even on a tie
-      // (the plane of T does not pass through the centre, so it cuts the cell's cone through the
-      // centroid), which a corner's nearest site does not guarantee (a corner on a Voronoi vertex).
-      const int seed = walk(o0, S.g);
-      stack.assign(1, seed);
-      stamp[seed] = int(f);
-      while(!stack.empty()) {
-        const int s = stack.back();
-        stack.pop_back();
-        const Eigen::Vector3d& xs = sites[s];
-        Small_polygon* poly = &poly_a;
-        Small_polygon* tmp = &poly_b;
-        poly->assign(T.p[0], T.p[1], T.p[2]);
-        bool clipped = false;
-        cuts.clear();
-        for(int j = start[s]; j < start[s + 1]; ++j) {
-          // y nearer to s than to n:  2 y.(x_n - x_s) <= |x_n|^2 - |x_s|^2
-          const int n = nbr[j];
-          const Eigen::Vector3d w = sites[n] - xs;
-          const double c = sq[std::size_t(n)] - sq[std::size_t(s)];
-          if(2 * S.p[0].dot(w) <= c && 2 * S.p[1].dot(w) <= c && 2 * S.p[2].dot(w) <= c) continue;  // misses T
-          cuts.push_back(n);
-          // the half-plane in the frame, y = o + u e1 + v e2
-          if(clip_half_plane(*poly, Eigen::Vector2d(2 * S.e1.dot(w), 2 * S.e2.dot(w)), c - 2 * S.o.dot(w), *tmp)) {
-            clipped = true;
-            std::swap(poly, tmp);
-            if(poly->n < 3) break;
-          }
-        }
-        if(poly->n < 3) continue;  // s's cell misses T: nothing to add, no flood from it
-        if(!clipped) {
-          add_whole(s);
-          continue;  // no neighbour's cell meets T
-        }
-        const Eigen::Vector3d ds = xs - S.o;
-        Cell_accumulator A;
-        integrate_polygon(poly->p, std::size_t(poly->n), T.r0, T.rg, Eigen::Vector2d(S.e1.dot(ds), S.e2.dot(ds)), A);
-        add(s, A);
-        // n's cell can meet T only if a corner of T is closer to n than to s
-        for(int n : cuts)
-          if(stamp[n] != int(f)) {
-            stamp[n] = int(f);
-            stack.push_back(n);
-          }
-      }
-    }
-  };
-  run_chunks(threads, chunks, work);
-  out.assign(ns, Spherical_cell_accumulator());
-  for(std::size_t i = 0; i < ns; ++i)
-    for(std::size_t c = 0; c < chunks; ++c) {
-      out[i].mass += acc[c][i].mass;
-      out[i].moment += acc[c][i].moment;
-      out[i].energy += acc[c][i].energy;
-    }
-}
-
-// m unit vectors spread over the density of `tri` (in Morton order): stratified_samples() on the chordal
-// triangles (evenly spaced quantiles of the mass along the curve, a random point in each chosen
-// triangle, shrunk towards its centroid), centrally projected onto the sphere
-inline std::vector<Eigen::Vector3d> spherical_stratified_samples(const std::vector<Spherical_background_triangle>& tri,
-                                                                 std::size_t m, std::mt19937_64& rng)
-{
-  std::vector<double> cdf(tri.size());
-  double acc = 0;
-  for(std::size_t f = 0; f < tri.size(); ++f) {
-    acc += tri[f].flat.mass;
-    cdf[f] = acc;
-  }
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  const double offset = U(rng);
-  std::vector<Eigen::Vector3d> out;
-  out.reserve(m);
-  for(std::size_t k = 0; k < m; ++k) {
-    const double r = (double(k) + offset) / double(m) * acc;
-    const std::size_t f = std::min(tri.size() - 1, std::size_t(std::upper_bound(cdf.begin(), cdf.end(), r) - cdf.begin()));
-    double a = U(rng), b = U(rng);
-    if(a + b > 1) { a = 1 - a; b = 1 - b; }
-    const auto& p = tri[f].p;
-    const Eigen::Vector3d g = (p[0] + p[1] + p[2]) / 3.0;
-    const Eigen::Vector3d y = p[0] + a * (p[1] - p[0]) + b * (p[2] - p[0]);
-    out.push_back((g + 0.98 * (y - g)).normalized());
-  }
-  return out;
+  integrate_restricted_voronoi(Spherical_cell_geometry(tri, sites, sq, owner), ns, start, nbr, first, threads, out);
 }
 
 } // namespace internal

@@ -16,15 +16,45 @@ namespace Aniso_conformal {
 namespace internal {
 
 // A homology basis of a closed triangulated surface by the tree-cotree decomposition (Eppstein 2003):
-// a spanning tree T of the vertices, a spanning tree C of the faces through edges not in T; the 2g
-// edges in neither close the generators. Cutting the surface along every edge not in C leaves a disk
-// (the fundamental domain) that C unfolds.
+// a spanning tree C of the faces (the cotree), a spanning tree T of the vertices through edges not
+// crossed by C; the 2g edges in neither close the generators. Cutting the surface along every edge not
+// in C leaves a disk (the fundamental domain) that C unfolds.
+//
+// C is built first, breadth-first from a central face (the middle of a longest breadth-first path of
+// the dual graph, found by two sweeps), so that every face is unfolded along a shortest dual path: the
+// fundamental domain is as round as the surface allows. Building T first and C in its complement, as
+// textbooks do, makes C detour around T, and on surfaces of high genus the domain then grows long
+// branches that reach where the hyperbolic plane is no longer representable in double precision (a
+// genus-9 part reached a hyperbolic radius beyond 20).
 struct Tree_cotree {
   std::vector<int> parent;         // per vertex: its parent in T (-1 at the root)
   std::vector<char> in_tree;       // per halfedge: its edge is in T
   std::vector<char> in_cotree;     // per halfedge: its edge is in C (the dual tree)
   std::vector<int> generators;     // one halfedge per edge in neither T nor C (2g of them)
+  int root_face = 0;               // the face C starts from
 };
+
+// breadth-first distances between faces across the halfedges `may_cross` allows, from `start`
+template <typename MayCross>
+std::vector<int> face_distances(const Intrinsic_triangulation& itri, int start, MayCross may_cross)
+{
+  std::vector<int> d(itri.number_of_faces(), -1);
+  std::deque<int> queue(1, start);
+  d[std::size_t(start)] = 0;
+  while(!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    for(int k = 0; k < 3; ++k) {
+      const int h = 3 * f + k;
+      if(!may_cross(h)) continue;
+      const int g = Intrinsic_triangulation::face(itri.twin(h));
+      if(d[std::size_t(g)] >= 0) continue;
+      d[std::size_t(g)] = d[std::size_t(f)] + 1;
+      queue.push_back(g);
+    }
+  }
+  return d;
+}
 
 inline Tree_cotree tree_cotree(const Intrinsic_triangulation& itri)
 {
@@ -35,38 +65,51 @@ inline Tree_cotree tree_cotree(const Intrinsic_triangulation& itri)
   tc.parent.assign(std::size_t(nv), -1);
   tc.in_tree.assign(std::size_t(nh), 0);
   tc.in_cotree.assign(std::size_t(nh), 0);
-  // BFS trees keep the generators short, which keeps the fundamental domain compact
-  std::vector<char> seen(std::size_t(nv), 0);
-  std::deque<int> queue(1, 0);
-  seen[0] = 1;
-  while(!queue.empty()) {
-    const int v = queue.front();
-    queue.pop_front();
-    for(int h : itri.outgoing_halfedges(v)) {
-      const int w = itri.head(h);
-      if(seen[std::size_t(w)]) continue;
-      seen[std::size_t(w)] = 1;
-      tc.parent[std::size_t(w)] = v;
-      tc.in_tree[std::size_t(h)] = tc.in_tree[std::size_t(itri.twin(h))] = 1;
-      queue.push_back(w);
-    }
-  }
+  auto any = [](int) { return true; };
+  // the central face: two sweeps find a longest path a - b; its middle face is central
+  const std::vector<int> d0 = face_distances(itri, 0, any);
+  if(std::find(d0.begin(), d0.end(), -1) != d0.end()) throw Invalid_input("tree_cotree(): the triangulation is not connected");
+  const int a = int(std::max_element(d0.begin(), d0.end()) - d0.begin());
+  const std::vector<int> da = face_distances(itri, a, any);
+  const int b = int(std::max_element(da.begin(), da.end()) - da.begin());
+  const std::vector<int> db = face_distances(itri, b, any);
+  int centre = a;
+  for(int f = 0; f < nf; ++f)
+    if(std::max(da[std::size_t(f)], db[std::size_t(f)]) < std::max(da[std::size_t(centre)], db[std::size_t(centre)])) centre = f;
+  tc.root_face = centre;
+  // C: breadth-first from the central face, across any edge
   std::vector<char> reached(std::size_t(nf), 0);
-  queue.assign(1, 0);
-  reached[0] = 1;
+  std::deque<int> queue(1, centre);
+  reached[std::size_t(centre)] = 1;
   while(!queue.empty()) {
     const int f = queue.front();
     queue.pop_front();
     for(int k = 0; k < 3; ++k) {
       const int h = 3 * f + k, t = itri.twin(h), g = Intrinsic_triangulation::face(t);
-      if(tc.in_tree[std::size_t(h)] || reached[std::size_t(g)]) continue;
+      if(reached[std::size_t(g)]) continue;
       reached[std::size_t(g)] = 1;
       tc.in_cotree[std::size_t(h)] = tc.in_cotree[std::size_t(t)] = 1;
       queue.push_back(g);
     }
   }
-  if(std::find(seen.begin(), seen.end(), 0) != seen.end() || std::find(reached.begin(), reached.end(), 0) != reached.end())
-    throw Invalid_input("tree_cotree(): the triangulation is not connected");
+  // T: breadth-first from vertex 0 through the edges C does not cross (they form a connected graph)
+  std::vector<char> seen(std::size_t(nv), 0);
+  std::deque<int> vqueue(1, 0);
+  seen[0] = 1;
+  while(!vqueue.empty()) {
+    const int v = vqueue.front();
+    vqueue.pop_front();
+    for(int h : itri.outgoing_halfedges(v)) {
+      const int w = itri.head(h);
+      if(seen[std::size_t(w)] || tc.in_cotree[std::size_t(h)]) continue;
+      seen[std::size_t(w)] = 1;
+      tc.parent[std::size_t(w)] = v;
+      tc.in_tree[std::size_t(h)] = tc.in_tree[std::size_t(itri.twin(h))] = 1;
+      vqueue.push_back(w);
+    }
+  }
+  if(std::find(seen.begin(), seen.end(), 0) != seen.end())
+    throw Internal_error("tree_cotree(): the edges the cotree does not cross do not connect the vertices");
   for(int h = 0; h < nh; ++h)
     if(itri.is_edge_representative(h) && !tc.in_tree[std::size_t(h)] && !tc.in_cotree[std::size_t(h)]) tc.generators.push_back(h);
   return tc;

@@ -16,6 +16,7 @@
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/refine_background.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include <CGAL/boost/graph/Euler_operations.h>
@@ -75,9 +76,10 @@ inline std::size_t mark_corners(const Input_surface& s, Intrinsic_triangulation&
   return n;
 }
 
-// stages 1 and 2: the metric at the input vertices, the corners of the boundary, the adjusted lengths
+// stages 1 and 2: the metric at the input vertices, the corners of the boundary, the background refined
+// for `n` output vertices, the adjusted lengths
 template <typename AnisotropicMetric, typename NamedParameters, typename Visitor>
-Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, const AnisotropicMetric& metric,
+Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, const AnisotropicMetric& metric, std::size_t n,
                                                 const NamedParameters& np, Visitor& vis, Remeshing_result& result)
 {
   Stage_timer t1(vis, Stage::METRIC);
@@ -85,6 +87,7 @@ Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, co
   result.corners = mark_corners(surface, itri, corner_angle(np));
   result.seconds[int(Stage::METRIC)] = t1.stop(vis);
   Stage_timer t2(vis, Stage::EDGE_LENGTHS);
+  result.refinement = refine_background(itri, surface, metric, n);
   result.adjustment = adjust_edge_lengths(itri, surface, np);
   result.background_vertices = itri.number_of_vertices();
   result.background_faces = itri.number_of_faces();

@@ -1,0 +1,209 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_CVT_RESTRICTED_VORONOI_KERNEL_H
+#define ANISO_CONFORMAL_INTERNAL_CVT_RESTRICTED_VORONOI_KERNEL_H
+
+#include <Aniso_conformal/internal/CVT/clip_integrate.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cstddef>
+#include <thread>
+#include <utility>
+#include <vector>
+
+// The restricted Voronoi diagram of a set of sites over background triangles, written once for every
+// domain: a greedy walk on the Delaunay graph to the site nearest to a triangle, a flood over the
+// neighbours whose cells can meet it, a Sutherland-Hodgman clip of the triangle (in a 2D frame of its
+// own) by each cell's bisectors, and the integration of each piece. What differs between the domains
+// (how distances compare, the bisector as a half-plane of the triangle's frame, how a piece is
+// integrated, what is accumulated) is a cell-geometry policy; see integrate_restricted_voronoi().
+
+namespace Aniso_conformal {
+namespace internal {
+
+// runs work(0 .. chunks-1) on up to `threads` threads
+template <typename Work>
+void run_chunks(unsigned threads, std::size_t chunks, Work& work)
+{
+  const unsigned nt = std::min<unsigned>(threads, unsigned(chunks));
+  if(nt <= 1) {
+    for(std::size_t c = 0; c < chunks; ++c) work(c);
+    return;
+  }
+  std::vector<std::thread> pool;
+  for(unsigned t = 0; t < nt; ++t)
+    pool.emplace_back([&, t]() {
+      for(std::size_t c = t; c < chunks; c += nt) work(c);
+    });
+  for(auto& th : pool) th.join();
+}
+
+// Greedy walk on a Delaunay graph in CSR form (neighbours of i: nbr[start[i] .. start[i+1])) from
+// `seed` to a site no neighbour of which is nearer; distance(i) orders the sites by their distance to
+// the target (smaller is nearer, any monotone function of the distance). It ends at the nearest site:
+// on a Delaunay graph the distance has no local minimum but the global one.
+template <typename Distance>
+int greedy_walk(int seed, const std::vector<int>& start, const std::vector<int>& nbr, const Distance& distance)
+{
+  double best = distance(seed);
+  for(bool moved = true; moved;) {
+    moved = false;
+    for(int j = start[std::size_t(seed)]; j < start[std::size_t(seed) + 1]; ++j) {
+      const double d = distance(nbr[std::size_t(j)]);
+      if(d < best) {
+        best = d;
+        seed = nbr[std::size_t(j)];
+        moved = true;
+        break;
+      }
+    }
+  }
+  return seed;
+}
+
+// the first site with a Delaunay neighbour (the walks start there), or 0 if none has one
+inline int first_connected_site(const std::vector<int>& start)
+{
+  const std::size_t ns = start.empty() ? 0 : start.size() - 1;
+  for(std::size_t i = 0; i < ns; ++i)
+    if(start[i] != start[i + 1]) return int(i);
+  return 0;
+}
+
+// What a policy knows of the bisector of sites s and n over a background triangle T before clipping.
+enum class Bisector {
+  misses,   // the bisector leaves T whole on s's side: no clip, and n's cell does not meet T
+  meets,    // some corner of T is nearer to n: clip, and n's cell may meet T
+  untested  // clip; n's cell may meet T if a corner of T (in the frame) violates a.y <= b
+};
+
+namespace restricted_voronoi_detail {
+
+struct Flood_candidate {
+  int site;
+  bool tested;          // the policy has said the cell can meet T (Bisector::meets)
+  Eigen::Vector2d a;    // the half-plane a.y <= b of the points nearer to the cell's site than to `site`
+  double b;
+};
+
+// Clips T (in its frame) by the bisectors of site s in `poly_a`/`poly_b`; returns the clipped polygon
+// (fewer than 3 vertices: s's cell misses T) and whether any bisector cut it. `candidates` receives the
+// neighbours whose cells may meet T.
+template <typename Policy>
+const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const std::vector<int>& start, const std::vector<int>& nbr,
+                                  Small_polygon& poly_a, Small_polygon& poly_b, std::vector<Flood_candidate>& candidates,
+                                  bool& clipped)
+{
+  const auto& T = P.triangle(f);
+  Small_polygon* poly = &poly_a;
+  Small_polygon* tmp = &poly_b;
+  poly->assign(T.p[0], T.p[1], T.p[2]);
+  clipped = false;
+  candidates.clear();
+  for(int j = start[std::size_t(s)]; j < start[std::size_t(s) + 1]; ++j) {
+    const int n = nbr[std::size_t(j)];
+    Flood_candidate c;
+    c.site = n;
+    const Bisector side = P.bisector(f, s, n, c.a, c.b);
+    if(side == Bisector::misses) continue;
+    c.tested = side == Bisector::meets;
+    candidates.push_back(c);
+    if(clip_half_plane(*poly, c.a, c.b, *tmp)) {
+      clipped = true;
+      std::swap(poly, tmp);
+      if(poly->n < 3) break;
+    }
+  }
+  return poly;
+}
+
+} // namespace restricted_voronoi_detail
+
+/*
+ * Integrates the density of the background triangles of `P` over the Voronoi cells of `ns` sites with
+ * the Delaunay neighbours `start`/`nbr` (CSR form): out[i] receives the integrals of the part of the
+ * triangles nearer to site i than to any other site. Each triangle is clipped against the cells it
+ * meets: unless the policy knows it lies in one cell, a greedy walk finds the site nearest to it, then
+ * a flood visits the neighbours whose cells can meet it; each visited cell clips the triangle by its
+ * bisectors (Sutherland-Hodgman, clip_half_plane()), and its piece, or the whole triangle when no
+ * bisector cuts it, is integrated (the exact restricted Voronoi diagram by clipping, as in Yan, Levy,
+ * Liu, Sun and Wang 2009, "Isotropic remeshing with fast and exact computation of restricted Voronoi
+ * diagram"). The triangles are split into 16 fixed chunks (consecutive, so a
+ * walk starts next to the previous triangle's site when the triangles are in a space-filling-curve
+ * order) summed in order: the result does not depend on the number of threads. `first` is a site
+ * with a Delaunay neighbour (where each chunk's first walk starts).
+ *
+ * The cell-geometry policy P (the plane and flat torus, the sphere, the Klein disk) provides:
+ *   Accumulator                        per-site integrals, zero when default-constructed, with +=
+ *   number_of_triangles()
+ *   triangle(f)                        T in its 2D frame: corners T.p[0..2] (Eigen::Vector2d)
+ *   in_one_cell(f, s)                  true (and s) if T is known to lie in s's cell, else false
+ *   walk_start(f, previous)            where the walk to T's nearest site starts (previous: the last
+ *                                      walk's end in this chunk)
+ *   walk_target(f), distance(s, y)     the point the walk approaches and the order of the sites'
+ *                                      distances to it (smaller is nearer)
+ *   bisector(f, s, n, a, b)            the points nearer to s than to n as the half-plane a.y <= b of
+ *                                      T's frame, and what is known of it (Bisector)
+ *   add_piece(f, s, poly, acc)         integrals over the clipped polygon (frame), about site s
+ *   add_whole(f, s, acc)               integrals over the whole of T, about site s
+ */
+template <typename Policy>
+void integrate_restricted_voronoi(const Policy& P, std::size_t ns, const std::vector<int>& start, const std::vector<int>& nbr,
+                                  int first, unsigned threads, std::vector<typename Policy::Accumulator>& out)
+{
+  typedef typename Policy::Accumulator Accumulator;
+  const std::size_t chunks = 16, nf = P.number_of_triangles();
+  std::vector<std::vector<Accumulator>> acc(chunks);
+  auto work = [&](std::size_t chunk) {
+    std::vector<Accumulator>& A = acc[chunk];
+    A.assign(ns, Accumulator());
+    std::vector<int> stamp(ns, -1), stack;
+    std::vector<restricted_voronoi_detail::Flood_candidate> candidates;
+    Small_polygon poly_a, poly_b;
+    int seed = first;
+    for(std::size_t f = chunk * nf / chunks; f < (chunk + 1) * nf / chunks; ++f) {
+      int s = -1;
+      if(P.in_one_cell(f, s)) {
+        P.add_whole(f, s, A[std::size_t(s)]);
+        continue;
+      }
+      const auto y = P.walk_target(f);
+      seed = greedy_walk(P.walk_start(f, seed), start, nbr, [&](int i) { return P.distance(i, y); });
+      stack.assign(1, seed);
+      stamp[std::size_t(seed)] = int(f);
+      while(!stack.empty()) {
+        s = stack.back();
+        stack.pop_back();
+        bool clipped = false;
+        const Small_polygon* poly =
+            restricted_voronoi_detail::clip_to_cell(P, f, s, start, nbr, poly_a, poly_b, candidates, clipped);
+        if(poly->n < 3) continue;  // s's cell misses T: nothing to add, no flood from it
+        if(!clipped) {
+          P.add_whole(f, s, A[std::size_t(s)]);
+          continue;  // no neighbour's cell meets T
+        }
+        P.add_piece(f, s, *poly, A[std::size_t(s)]);
+        // n's cell can meet T only if a corner of T is nearer to n than to s
+        const auto& T = P.triangle(f);
+        for(const auto& c : candidates) {
+          if(stamp[std::size_t(c.site)] == int(f)) continue;
+          if(!c.tested && c.a.dot(T.p[0]) <= c.b && c.a.dot(T.p[1]) <= c.b && c.a.dot(T.p[2]) <= c.b) continue;
+          stamp[std::size_t(c.site)] = int(f);
+          stack.push_back(c.site);
+        }
+      }
+    }
+  };
+  run_chunks(threads, chunks, work);
+  out.assign(ns, Accumulator());
+  for(std::size_t i = 0; i < ns; ++i)
+    for(std::size_t c = 0; c < chunks; ++c) out[i] += acc[c][i];
+}
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_CVT_RESTRICTED_VORONOI_KERNEL_H

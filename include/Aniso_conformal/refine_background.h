@@ -1,0 +1,148 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_REFINE_BACKGROUND_H
+#define ANISO_CONFORMAL_REFINE_BACKGROUND_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/parameter_defaults.h>
+#include <Aniso_conformal/internal/tensor.h>
+#include <Aniso_conformal/parameters.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <queue>
+#include <string>
+#include <tuple>
+#include <vector>
+
+/// \file refine_background.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * what `refine_background()` did
+ */
+struct Refinement_report {
+  std::size_t vertices_before = 0;  ///< vertices of the background before the refinement
+  std::size_t vertices_after = 0;   ///< and after
+  std::size_t splits = 0;           ///< edges split
+  /// the edge length, in the metric, of an equilateral mesh with the requested number of vertices and the
+  /// background's area in the metric: no background edge is left longer than twice that
+  double output_edge_length = 0;
+  double longest_edge = 0;          ///< the longest background edge in the metric at the end
+};
+
+namespace internal {
+
+// the length in the metric of the segment pq with metric square roots Qp and Qq at its ends
+inline double metric_segment_length(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Matrix3d& Qp,
+                                    const Eigen::Matrix3d& Qq)
+{
+  return (0.5 * (Qp + Qq) * (q - p)).norm();
+}
+
+// the area of `itri` in the metric: the triangles of the metric edge lengths (Heron; an invalid
+// triangle counts as flat)
+inline double metric_area(const Intrinsic_triangulation& itri)
+{
+  double area = 0;
+  for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
+    area += heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
+  return area;
+}
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * refines the background `itri` so that it carries `number_of_sites` output vertices and resolves the
+ * metric at their scale (issue 14): with `A` the area of `itri` in the metric and
+ * `h = sqrt(2 A / (sqrt(3) n))` the edge length of an equilateral mesh with `n = number_of_sites`
+ * vertices covering it, the longest edge in the metric is split at its midpoint while an edge is longer
+ * than `2 h`, or while the background has fewer than `2 n` vertices (a CVT cell then spans several
+ * background triangles, whose linear density represents the conformal factor). A background that
+ * already meets both is left as it is.
+ *
+ * Splitting the globally longest edge is Rivara's longest-edge bisection: the split edge is the longest of
+ * both its triangles, so the smallest angle of the background never falls below half of what it was (in
+ * the lengths measured). The new vertex is the midpoint of the edge. Before any flip every edge of `itri`
+ * is an input edge or a segment inside an input face, so the midpoint is a point of the input surface:
+ * its `Surface_point` is found on `surface`, and its metric square root is the metric evaluated there
+ * (not an average), which resolves the metric where the input is coarse. The map back stays exact and
+ * the output of a coarse flat-faced input lies on its faces.
+ *
+ * The edge lengths of `itri` are (re)computed at the end (`compute_metric_edge_lengths()`).
+ *
+ * \param itri the background, as built from `surface` and the metric's square roots (before
+ *        `adjust_edge_lengths()`): no edge may have been flipped
+ * \param surface the input surface the vertices of `itri` lie on
+ * \param metric a model of `AnisotropicMetric`, evaluated at the new vertices
+ * \param number_of_sites the number of output vertices the background must carry (>= 1)
+ * \returns what it did
+ * \throws Invalid_input if the metric is not positive definite at a new vertex
+ * \throws Remeshing_failure if the refinement needs more than `64 n + 4 V` vertices (`V` those of the
+ *         input): a metric that varies faster than any background of that size resolves
+ */
+template <typename AnisotropicMetric>
+Refinement_report refine_background(Intrinsic_triangulation& itri, const Input_surface& surface, const AnisotropicMetric& metric,
+                                    std::size_t number_of_sites)
+{
+  Refinement_report report;
+  report.vertices_before = itri.number_of_vertices();
+  const std::size_t n = std::max<std::size_t>(1, number_of_sites);
+  compute_metric_edge_lengths(itri);
+  const double area = internal::metric_area(itri);
+  report.output_edge_length = std::sqrt(2 * area / (std::sqrt(3.0) * double(n)));
+  const std::size_t least = 2 * n, most = 64 * n + 4 * report.vertices_before;
+  const double longest_allowed = 2 * report.output_edge_length;
+  auto length = [&](int a, int b) { return internal::metric_segment_length(itri.position(a), itri.position(b), itri.Q(a), itri.Q(b)); };
+
+  typedef std::tuple<double, int, int> Entry;  // length, ends
+  std::priority_queue<Entry> queue;
+  for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
+    if(itri.is_edge_representative(h)) queue.emplace(length(itri.tail(h), itri.head(h)), itri.tail(h), itri.head(h));
+  while(!queue.empty()) {
+    const Entry top = queue.top();
+    if(std::get<0>(top) <= longest_allowed && itri.number_of_vertices() >= least) break;
+    queue.pop();
+    int h = itri.find_halfedge(std::get<1>(top), std::get<2>(top));
+    if(h < 0) h = itri.find_halfedge(std::get<2>(top), std::get<1>(top));  // a boundary edge has one side
+    if(h < 0) continue;  // split already
+    if(itri.number_of_vertices() >= most)
+      throw Remeshing_failure("background refinement: " + std::to_string(n) + " output vertices need a background of more than " +
+                              std::to_string(most) + " vertices to resolve the metric (it varies too fast for the input's resolution)");
+    const int a = itri.tail(h), b = itri.head(h);
+    const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
+    Surface_point sp = surface.project(mid);
+    sp.position = mid;  // on the input already: an input edge or a segment inside an input face
+    const Eigen::Matrix3d M = metric.tensor(sp);
+    if(!internal::all_finite(M) || !(internal::tangent_positivity(M, surface.is_planar() ? Eigen::Vector3d(0, 0, 1)
+                                                                                          : Eigen::Vector3d(surface.vertex_normals()[sp.vertices[0]])) > 1e-12))
+      throw Invalid_input("background refinement: the metric is not finite or not positive definite on the tangent plane at (" +
+                          std::to_string(mid.x()) + ", " + std::to_string(mid.y()) + ", " + std::to_string(mid.z()) + ")");
+    const int m = itri.split(h, sp, internal::symmetric_sqrt(M));
+    ++report.splits;
+    // the new edges: from m to the head of each outgoing halfedge, and to the tail of the halfedge that
+    // enters m in the same face (on the boundary, the one neighbour no outgoing halfedge reaches)
+    for(int o : itri.outgoing_halfedges(m))
+      for(int x : {itri.head(o), itri.opposite_vertex(o)}) queue.emplace(length(m, x), m, x);
+  }
+  report.vertices_after = itri.number_of_vertices();
+  for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
+    if(itri.is_edge_representative(h)) report.longest_edge = std::max(report.longest_edge, length(itri.tail(h), itri.head(h)));
+  compute_metric_edge_lengths(itri);
+  return report;
+}
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_REFINE_BACKGROUND_H
