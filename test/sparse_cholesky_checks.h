@@ -188,6 +188,7 @@ BOOST_AUTO_TEST_CASE(cholmod_out_of_memory_falls_back_to_ldlt)
 BOOST_AUTO_TEST_CASE(later_systems_reuse_the_factor_or_refactorise)
 {
   ACI::Sparse_spd_solver s;
+  s.cholmod_min_unknowns = 0;  // CHOLMOD for this small system too
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(400, 1, 3);
   Eigen::VectorXd x;
   std::string failure;
@@ -252,7 +253,8 @@ BOOST_AUTO_TEST_CASE(the_newton_solve_converges_with_this_backend)
   for(const auto& loop : cap.boundary_loops())
     for(std::size_t v : loop) fixed[v] = 1;
   AC::Default_visitor vis;
-  const ACI::Newton_bounds bounds;
+  ACI::Newton_bounds bounds;
+  bounds.cholmod_min_unknowns = 0;  // CHOLMOD for this small solve too
   ACI::make_intrinsic_delaunay(t, bounds.flips_per_edge, "test");
   const ACI::Conformal_solution sol = ACI::solve_conformal_metric(t, ACI::Euclidean_vertex_scaling(), fixed,
                                                                   std::vector<double>(t.number_of_vertices(), 0.0), bounds,
@@ -279,9 +281,11 @@ BOOST_AUTO_TEST_CASE(a_failed_factorisation_is_a_typed_convergence_failure)
   ACI::make_intrinsic_delaunay(t, ACI::Newton_bounds().flips_per_edge, "test");
   AC::Default_visitor vis;
   std::string message;
+  ACI::Newton_bounds bounds;
+  bounds.cholmod_min_unknowns = 0;
   try {
-    ACI::solve_conformal_metric(t, Singular_hessian_geometry(), fixed, std::vector<double>(t.number_of_vertices(), 0.0),
-                                ACI::Newton_bounds(), vis, "test solve");
+    ACI::solve_conformal_metric(t, Singular_hessian_geometry(), fixed, std::vector<double>(t.number_of_vertices(), 0.0), bounds,
+                                vis, "test solve");
   } catch(const AC::Convergence_failure& e) {
     message = e.what();
     BOOST_TEST(e.residual() > 0);
@@ -291,4 +295,20 @@ BOOST_AUTO_TEST_CASE(a_failed_factorisation_is_a_typed_convergence_failure)
 #ifdef ANISO_CONFORMAL_HAS_CHOLMOD
   BOOST_TEST(message.find("CHOLMOD factorisation: matrix not positive definite") != std::string::npos, message);
 #endif
+}
+
+BOOST_AUTO_TEST_CASE(small_systems_go_to_ldlt)
+{
+  // below cholmod_min_unknowns the solver factorises with Eigen's LDLT, as before CHOLMOD
+  ACI::Sparse_spd_solver s;
+  const Eigen::SparseMatrix<double> A = grid_laplacian(20, 1e-2);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(A.rows());
+  Eigen::VectorXd x;
+  std::string failure;
+  BOOST_TEST(s.solve(A, b, true, x, failure));
+  BOOST_TEST(s.factor().backend() == std::string("Eigen SimplicialLDLT"));
+  BOOST_TEST(relative_residual(A, x, b) < 1e-12);
+  s.cholmod_min_unknowns = 400;  // this size and above: CHOLMOD, where the build has it
+  BOOST_TEST(s.solve(A, b, true, x, failure));
+  BOOST_TEST(s.factor().backend() == expected_backend);
 }

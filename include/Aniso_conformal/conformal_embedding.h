@@ -45,8 +45,8 @@ struct Planar_embedding {
  * conformal equivalence (Springborn, Schroeder, Pinkall 2008) with per-vertex log scales `u`, scaled
  * lengths `l'_ij = exp((u_i + u_j) / 2) l_ij`, `u = 0` on the boundary (boundary lengths are kept) and
  * angle sum `2 pi` at interior vertices, solved by Newton's method with the cotangent Laplacian as
- * Hessian (CHOLMOD's sparse Cholesky when the build found it, else Eigen's SimplicialLDLT) and a
- * backtracking line search; then laid out by unfolding triangles breadth-first, and the conformal factor
+ * Hessian (CHOLMOD's sparse Cholesky when the build found it and the system is large, else Eigen's
+ * SimplicialLDLT) and a backtracking line search; then laid out by unfolding triangles breadth-first, and the conformal factor
  * computed per vertex (paper eq.\ 6).
  *
  * Before every evaluation the triangulation is made intrinsically Delaunay for the scaled lengths
