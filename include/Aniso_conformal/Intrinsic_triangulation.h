@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,11 +59,19 @@ public:
       }
     m_twin.assign(3 * m_faces.size(), -1);
     m_length.assign(3 * m_faces.size(), std::numeric_limits<double>::quiet_NaN());
-    std::map<std::pair<int, int>, int> by_ends;
-    for(int h = 0; h < int(m_twin.size()); ++h) by_ends[{tail(h), head(h)}] = h;
+    // twins through the halfedges grouped by tail (linear; the input is a validated manifold, so each
+    // directed edge occurs once)
+    std::vector<int> start(nv + 1, 0), by_tail(m_twin.size());
+    for(int h = 0; h < int(m_twin.size()); ++h) ++start[std::size_t(tail(h)) + 1];
+    for(std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    {
+      std::vector<int> fill(start.begin(), start.end() - 1);
+      for(int h = 0; h < int(m_twin.size()); ++h) by_tail[std::size_t(fill[std::size_t(tail(h))]++)] = h;
+    }
     for(int h = 0; h < int(m_twin.size()); ++h) {
-      auto it = by_ends.find({head(h), tail(h)});
-      if(it != by_ends.end()) m_twin[h] = it->second;
+      const int t = tail(h), b = head(h);
+      for(int i = start[std::size_t(b)]; i < start[std::size_t(b) + 1]; ++i)
+        if(head(by_tail[std::size_t(i)]) == t) m_twin[h] = by_tail[std::size_t(i)];
     }
     m_out.assign(nv, -1);
     for(int h = 0; h < int(m_twin.size()); ++h) m_out[tail(h)] = h;

@@ -61,7 +61,7 @@ struct Planar_embedding {
  * computes a conformal embedding of the disk `itri` into the plane (stage 3, DESIGN.md 3): discrete
  * conformal equivalence (Springborn, Schroeder, Pinkall 2008) with per-vertex log scales `u` and scaled
  * lengths `l'_ij = exp((u_i + u_j) / 2) l_ij`, angle sum `2 pi` at interior vertices, solved by Newton's
- * method with the cotangent Laplacian as Hessian (Eigen's sparse Cholesky) and a backtracking line
+ * method with the cotangent Laplacian as Hessian (CHOLMOD's sparse Cholesky when the build found it and the system is large, else Eigen's SimplicialLDLT) and a backtracking line
  * search; then laid out by unfolding triangles breadth-first, and the conformal factor computed per
  * vertex (paper eq.\ 6). What the boundary keeps is the named parameter `planar_boundary`:
  *
