@@ -194,6 +194,20 @@ BOOST_AUTO_TEST_CASE(flat_torus_embedding_of_a_curved_cyclide_is_flat_and_consis
   BOOST_CHECK_THROW(AC::flat_torus_embedding(td), AC::Invalid_input);
 }
 
+BOOST_AUTO_TEST_CASE(coarse_faceted_torus_is_not_flagged_as_inverted)
+{
+  // CGAL's pipe.off (160 vertices, 320 faces) to 2000: refused as "inverted" before (issue 14), when the
+  // output triangles along its creases were judged against averaged vertex normals only
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/pipe.off");
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_torus(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(2000)));
+  BOOST_TEST(out.points.size() == 2000u);
+  BOOST_TEST(out.faces.size() == 4000u);  // genus 1: F = 2V
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.quality.G_avg >= 0.9);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+}
+
 BOOST_AUTO_TEST_CASE(periodic_cvt_integrates_exactly_and_its_dual_is_a_torus)
 {
   const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);

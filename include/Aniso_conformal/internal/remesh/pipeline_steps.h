@@ -178,17 +178,31 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
 // for a planar input)
 inline std::size_t count_inverted_triangles(const Input_surface& surface, const Remeshed_surface& out, unsigned threads = 0)
 {
+  // A triangle is inverted when its normal disagrees (dot <= 0) with every reference normal of the input
+  // around it: the vertex normals interpolated at its corners, and the normal of each input face that
+  // holds one of its corners. On a smooth input these agree; on a coarse faceted one (a 12-triangle cube,
+  // a 140-vertex blob) an output triangle close to a sharp crease can disagree with the averaged vertex
+  // normals while lying correctly on the faces it touches, which alone would flag a valid triangle.
   std::vector<char> inverted(out.faces.size(), 0);
   parallel_for(out.faces.size(), threads, [&](std::size_t i) {
     const auto& f = out.faces[i];
     const Eigen::Vector3d nf = (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]);
+    if(surface.is_planar()) {
+      inverted[i] = !(nf.z() > 0);
+      return;
+    }
     Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+    bool agrees = false;
     for(int k = 0; k < 3; ++k) {
       const Surface_point& sp = out.surface_points[f[k]];
       for(int j = 0; j < 3; ++j) ref += sp.barycentric[j] * surface.vertex_normals()[sp.vertices[j]];
+      if(sp.vertices[0] != sp.vertices[1]) {  // inside or on the border of an input face: its normal
+        const Eigen::Vector3d& a = surface.points()[sp.vertices[0]];
+        const Eigen::Vector3d nface = (surface.points()[sp.vertices[1]] - a).cross(surface.points()[sp.vertices[2]] - a);
+        agrees = agrees || nf.dot(nface) > 0;
+      }
     }
-    if(surface.is_planar()) ref = Eigen::Vector3d(0, 0, 1);
-    inverted[i] = !(nf.dot(ref) > 0);
+    inverted[i] = !(agrees || nf.dot(ref) > 0);
   });
   return std::size_t(std::count(inverted.begin(), inverted.end(), 1));
 }
