@@ -3,12 +3,17 @@
 //
 // Runs the paper's Table 1 cases available in this version, times every stage (median of several runs)
 // and writes a Markdown table with the quality figures next to the paper's numbers.
-// Usage: bench_paper [--runs R] [--output FILE.md] [--quick] [--scaling]
+// Usage: bench_paper [--runs R] [--threads T] [--output FILE.md] [--only TEXT] [--quick | --scaling | --issue | --cvt-threads]
+//   --only TEXT: only the cases whose name contains TEXT;
 //   --quick: one small case, checked against loose bounds (the CTest smoke run of this harness);
-//   --scaling: the Table 2 cyclide at growing input sizes (25920, 100k, 400k vertices, 8000 output) and
-//              output sizes (1k, 8k, 32k from the 100k input), then the Fig. 10 ellipsoid likewise (10k, 41k,
-//              164k input vertices with 1000 output; 1k, 4k, 16k output from the 41k input), to show how
-//              each stage grows on the flat torus and on the sphere.
+//   --scaling: the Table 2 cyclide at growing input sizes (26k, 104k, 415k, 1.66M vertices, 8000 output) and
+//              output sizes (1k to 128k from the 415k input), then the Fig. 10 ellipsoid at 10k, 41k and 164k
+//              input vertices (1000 output), to show how each stage grows on the flat torus and on the sphere;
+//   --issue: the four cases of issue 18 that Geogram's vorpalite also runs (ellipsoid 1000, bear 3000,
+//            torus 4000, knot 3000);
+//   --cvt-threads: the CVT-heavy cases (104k input, 16k and 32k output) for a comparison of thread counts.
+// Every case runs in a child process of its own, so that its peak resident memory (getrusage of the
+// child) is its own; the table gives wall and CPU seconds, the peak and the peak per input vertex.
 
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Curvature_metric.h>
@@ -23,8 +28,14 @@
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/remesh.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -40,6 +51,37 @@ namespace AC = Aniso_conformal;
 
 namespace {
 
+unsigned threads = 0;  // number_of_threads of every case (0: every core)
+
+// process CPU seconds (all threads)
+double cpu_seconds()
+{
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// records the CPU time of each stage, next to the wall time remesh() reports
+// the peak resident memory of this process so far, in megabytes
+double peak_megabytes()
+{
+  rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return double(ru.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+// records the CPU time of each stage, next to the wall time remesh() reports, and the peak memory at its end
+struct Cpu_visitor : AC::Default_visitor {
+  std::array<double, AC::number_of_stages> cpu{}, peak{};
+  double started = 0;
+  void on_stage_started(AC::Stage) { started = cpu_seconds(); }
+  void on_stage_finished(AC::Stage s, double)
+  {
+    cpu[int(s)] += cpu_seconds() - started;
+    peak[int(s)] = peak_megabytes();
+  }
+};
+
 struct Case {
   std::string name, figure;
   std::size_t vertices;
@@ -53,7 +95,19 @@ struct Measure {
   double background = 0;
   AC::Remeshing_result result;
   std::size_t input_vertices = 0;
+  std::array<double, AC::number_of_stages> cpu{};  // CPU seconds per stage (all threads)
+  std::array<double, AC::number_of_stages> peak{}; // peak memory (MB) at the end of each stage, last run
+  double cpu_total = 0;                            // CPU seconds of the case (background included)
 };
+
+Cpu_visitor* current_visitor = nullptr;  // the visitor of the case being run (one at a time)
+
+// the named parameters of every case
+auto case_parameters(std::size_t n, unsigned iterations)
+{
+  return AC::parameters::number_of_vertices(n).number_of_iterations(iterations).number_of_threads(threads).visitor(
+      std::ref(*current_visitor));
+}
 
 double median(std::vector<double> v)
 {
@@ -81,7 +135,7 @@ Case analytic_case(const std::string& name, const std::string& fig, Metric metri
   Case c = case_header(name, fig, n, pp, pc, pin);
   c.background = [metric, n]() { return AC::make_square_background(metric, n); };
   c.run = [metric, n](const AC::Input_surface& s, AC::Remeshing_result& r) {
-    return AC::remesh(s, metric, r, AC::parameters::number_of_vertices(n).number_of_iterations(100u));
+    return AC::remesh(s, metric, r, case_parameters(n, 100u));
   };
   return c;
 }
@@ -94,7 +148,7 @@ Case image_case(const std::string& name, const std::string& fig, const std::stri
   auto metric = std::make_shared<AC::Image_metric>(*img, s);
   c.background = [img]() { return AC::make_image_background(*img); };
   c.run = [metric, n](const AC::Input_surface& bg, AC::Remeshing_result& r) {
-    return AC::remesh(bg, *metric, r, AC::parameters::number_of_vertices(n).number_of_iterations(100u));
+    return AC::remesh(bg, *metric, r, case_parameters(n, 100u));
   };
   return c;
 }
@@ -108,13 +162,17 @@ Case surface_case(const std::string& name, const std::string& fig, std::function
   c.background = input;
   c.run = [stretch, n, iterations, smoothing](const AC::Input_surface& s, AC::Remeshing_result& r) {
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = cpu_seconds();
     AC::Curvature_metric_options co;
     co.stretch_max = stretch;
     co.smoothing_iterations = smoothing;
+    co.number_of_threads = threads;
     const AC::Curvature_metric metric(s, co);
     const double metric_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    AC::Remeshed_surface out = AC::remesh(s, metric, r, AC::parameters::number_of_vertices(n).number_of_iterations(iterations));
+    const double metric_cpu = cpu_seconds() - c0;
+    AC::Remeshed_surface out = AC::remesh(s, metric, r, case_parameters(n, iterations));
     r.seconds[int(AC::Stage::METRIC)] += metric_seconds;
+    current_visitor->cpu[int(AC::Stage::METRIC)] += metric_cpu;
     return out;
   };
   return c;
@@ -138,11 +196,18 @@ Measure measure(const Case& c, int runs)
   std::vector<Measure> all;
   for(int k = 0; k < runs; ++k) {
     Measure m;
+    Cpu_visitor vis;
+    current_visitor = &vis;
+    const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     const AC::Input_surface bg = c.background();
     m.background = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     m.input_vertices = bg.number_of_vertices();
     c.run(bg, m.result);
+    m.cpu = vis.cpu;
+    m.peak = vis.peak;
+    m.cpu_total = cpu_seconds() - c0;
+    current_visitor = nullptr;
     all.push_back(m);
   }
   // median of each timing; the quality figures are identical across runs (fixed seed)
@@ -154,8 +219,93 @@ Measure measure(const Case& c, int runs)
     v.clear();
     for(const auto& m : all) v.push_back(m.result.seconds[s]);
     out.result.seconds[s] = median(v);
+    v.clear();
+    for(const auto& m : all) v.push_back(m.cpu[s]);
+    out.cpu[s] = median(v);
   }
+  v.clear();
+  for(const auto& m : all) v.push_back(m.cpu_total);
+  out.cpu_total = median(v);
+  out.peak = all.back().peak;
   return out;
+}
+
+
+// the table row of case `c` (median of `runs`), measured in this process; `sane` tells whether its figures
+// pass the loose bounds of --quick
+std::string measure_row(const Case& c, int runs, bool& sane)
+{
+  Measure m;
+  try {
+    m = measure(c, runs);
+  } catch(const AC::Error& e) {
+    std::cerr << c.name << ": " << e.what() << "\n";
+    sane = false;
+    return "| " + c.name + " | " + c.figure + " | failed: " + e.what() + " |\n";
+  }
+  const double peak_mb = peak_megabytes();
+  const AC::Remeshing_result& r = m.result;
+  const AC::Quality_report& q = r.quality;
+  const double total = m.background + r.total_seconds(), paper = c.paper_param_seconds + c.paper_cvt_seconds;
+  char line[1024];
+  std::snprintf(line, sizeof(line),
+                "| %s | %s | %zu (%s) | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %s | %s | %.4f | %.4f | %.2f | %.2f | %.3f | %.2g | %.2f | %.0f | %.0f |\n",
+                c.name.c_str(), c.figure.c_str(), m.input_vertices,
+                c.paper_input_vertices ? std::to_string(c.paper_input_vertices).c_str() : "-", q.number_of_vertices,
+                m.background, r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], r.seconds[4], r.seconds[5], total,
+                paper > 0 ? std::to_string(int(paper + 0.5)).c_str() : "-",
+                paper > 0 ? (std::to_string(int(paper / total + 0.5)) + "x").c_str() : "-", q.G_min, q.G_avg, q.theta_min,
+                q.theta_avg, q.percent_below_30, r.hausdorff_distance_relative, m.cpu_total, peak_mb,
+                peak_mb * 1048576.0 / double(std::max<std::size_t>(1, m.input_vertices)));
+  char cpu[512];
+  std::snprintf(cpu, sizeof(cpu), "   CPU s: metric %.3f edges %.3f embedding %.3f CVT %.3f dual %.3f quality %.3f\n", m.cpu[0],
+                m.cpu[1], m.cpu[2], m.cpu[3], m.cpu[4], m.cpu[5]);
+  char peaks[512];
+  std::snprintf(peaks, sizeof(peaks), "   peak MB after: metric %.0f edges %.0f embedding %.0f CVT %.0f dual %.0f quality %.0f\n",
+                m.peak[0], m.peak[1], m.peak[2], m.peak[3], m.peak[4], m.peak[5]);
+  std::cerr << line << cpu << peaks;
+  sane = sane && q.number_of_vertices == c.vertices && r.inverted_triangles == 0 && q.G_avg > 0.8 && q.theta_min > 5;
+  return line;
+}
+
+// measure_row() in a child process, so that the peak memory is the case's own
+std::string isolated_row(const Case& c, int runs, bool& sane)
+{
+  int fd[2];
+  if(pipe(fd) != 0) return measure_row(c, runs, sane);
+  std::cout.flush();
+  std::cerr.flush();
+  const pid_t pid = fork();
+  if(pid < 0) {
+    close(fd[0]);
+    close(fd[1]);
+    return measure_row(c, runs, sane);
+  }
+  if(pid == 0) {
+    close(fd[0]);
+    bool ok = true;
+    const std::string row = measure_row(c, runs, ok);
+    std::size_t done = 0;
+    while(done < row.size()) {
+      const ssize_t w = write(fd[1], row.data() + done, row.size() - done);
+      if(w <= 0) break;
+      done += std::size_t(w);
+    }
+    close(fd[1]);
+    std::cerr.flush();
+    _exit(ok ? 0 : 1);
+  }
+  close(fd[1]);
+  std::string row;
+  char buf[4096];
+  ssize_t got;
+  while((got = read(fd[0], buf, sizeof(buf))) > 0) row.append(buf, std::size_t(got));
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if(!WIFEXITED(status) || WEXITSTATUS(status) != 0) sane = false;
+  if(row.empty()) row = "| " + c.name + " | " + c.figure + " | failed: the child process died (status " + std::to_string(status) + ") |\n";
+  return row;
 }
 
 } // namespace
@@ -163,15 +313,22 @@ Measure measure(const Case& c, int runs)
 int main(int argc, char** argv)
 {
   int runs = 3;
-  bool quick = false, scaling = false;
-  std::string output;
+  bool quick = false, scaling = false, issue = false, cvt_threads = false;
+  std::string output, only;
   for(int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if(a == "--quick") quick = true;
     else if(a == "--scaling") scaling = true;
+    else if(a == "--issue") issue = true;
+    else if(a == "--cvt-threads") cvt_threads = true;
     else if(a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
+    else if(a == "--threads" && i + 1 < argc) threads = unsigned(std::max(0, std::atoi(argv[++i])));
     else if(a == "--output" && i + 1 < argc) output = argv[++i];
-    else { std::cerr << "usage: bench_paper [--runs R] [--output FILE.md] [--quick] [--scaling]\n"; return 2; }
+    else if(a == "--only" && i + 1 < argc) only = argv[++i];
+    else {
+      std::cerr << "usage: bench_paper [--runs R] [--threads T] [--output FILE.md] [--only TEXT] [--quick | --scaling | --issue | --cvt-threads]\n";
+      return 2;
+    }
   }
   const std::string data = ANISO_CONFORMAL_DATA_DIR;
   std::vector<Case> cases;
@@ -185,18 +342,28 @@ int main(int argc, char** argv)
                                    91, 316, 10000));
       runs = 1;
     } else if(scaling) {
-      // input size at 8000 output vertices, then output size from the 100k input (the paper's Table 2 metric)
+      // input size at 8000 output vertices, then output size from the 415k input (the paper's Table 2 metric)
       cases.push_back(cyclide_case("cyclide 180x144, 8k out", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920));
       cases.push_back(cyclide_case("cyclide 360x288, 8k out", "11", 360, 288, 29, 8000, 100, 0, 0, 0));
       cases.push_back(cyclide_case("cyclide 720x576, 8k out", "11", 720, 576, 29, 8000, 100, 0, 0, 0));
-      cases.push_back(cyclide_case("cyclide 360x288, 1k out", "11", 360, 288, 29, 1000, 100, 0, 0, 0));
-      cases.push_back(cyclide_case("cyclide 360x288, 32k out", "11", 360, 288, 29, 32000, 100, 0, 0, 0));
-      // the sphere: the Fig. 10 ellipsoid at growing input sizes (levels 5, 6, 7), then growing outputs
+      cases.push_back(cyclide_case("cyclide 1440x1152, 8k out", "11", 1440, 1152, 29, 8000, 100, 0, 0, 0));
+      for(std::size_t out : {1000u, 4000u, 16000u, 32000u, 64000u, 128000u})
+        cases.push_back(cyclide_case("cyclide 720x576, " + std::to_string(out / 1000) + "k out", "11", 720, 576, 29, out, 100, 0, 0, 0));
+      // the sphere: the Fig. 10 ellipsoid at growing input sizes (levels 5, 6, 7)
       cases.push_back(ellipsoid_case("ellipsoid level 5, 1k out", 5, 1000, 0, 0, 10242));
       cases.push_back(ellipsoid_case("ellipsoid level 6, 1k out", 6, 1000, 0, 0, 0));
       cases.push_back(ellipsoid_case("ellipsoid level 7, 1k out", 7, 1000, 0, 0, 0));
-      cases.push_back(ellipsoid_case("ellipsoid level 6, 4k out", 6, 4000, 0, 0, 0));
-      cases.push_back(ellipsoid_case("ellipsoid level 6, 16k out", 6, 16000, 0, 0, 0));
+    } else if(issue) {
+      // issue 18's comparison with vorpalite (Geogram 1.10, isotropic): 0.36 s, 0.66 s, 0.84 s, 0.41 s
+      cases.push_back(ellipsoid_case("ellipsoid (1, 0.6, 0.4), bound 10, 1000 out (vorpalite 0.36 s)", 5, 1000, 0, 0, 0));
+      cases.push_back(surface_case("bear, bound 5, 3000 out (vorpalite 0.66 s)", "-",
+                                   [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/bear.off"); }, 5, 3000, 100, 0, 0, 0));
+      cases.push_back(cyclide_case("cyclide 180x144, bound 29, 4000 out (vorpalite 0.84 s)", "11", 180, 144, 29, 4000, 100, 0, 0, 0));
+      cases.push_back(surface_case("knot1, bound 5, 3000 out (vorpalite 0.41 s)", "12",
+                                   [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/knot1.off"); }, 5, 3000, 100, 0, 0, 0));
+    } else if(cvt_threads) {
+      cases.push_back(cyclide_case("cyclide 360x288, 16k out", "11", 360, 288, 29, 16000, 100, 0, 0, 0));
+      cases.push_back(cyclide_case("cyclide 360x288, 32k out", "11", 360, 288, 29, 32000, 100, 0, 0, 0));
     } else {
       cases.push_back(analytic_case("2D varying metric", "6", AC::make_analytic_metric_2(AC::Fig6_metric()), 1000, 10, 388.11, 5112));
       cases.push_back(analytic_case("2D circular metric", "7", AC::make_analytic_metric_2(AC::Circular_metric()), 4000, 34, 848.29, 25717));
@@ -239,37 +406,15 @@ int main(int argc, char** argv)
   }
 
   std::ostringstream md;
-  md << "| case | fig. | input V (paper) | output V | background s | metric s | edges s | embedding s | CVT s | dual s | quality s | total s | paper total s | speed-up | G_min | G_avg | theta_min | theta_avg | %<30 | Hausdorff / diag |\n";
-  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| case | fig. | input V (paper) | output V | background s | metric s | edges s | embedding s | CVT s | dual s | quality s | total s | paper total s | speed-up | G_min | G_avg | theta_min | theta_avg | %<30 | Hausdorff / diag | CPU s | peak MB | peak bytes / input V |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   bool sane = true;
-  for(const Case& c : cases) {
-    Measure m;
-    try {
-      m = measure(c, runs);
-    } catch(const AC::Error& e) {
-      std::cerr << c.name << ": " << e.what() << "\n";
-      md << "| " << c.name << " | " << c.figure << " | failed: " << e.what() << " |\n";
-      sane = false;
-      continue;
-    }
-    const AC::Remeshing_result& r = m.result;
-    const AC::Quality_report& q = r.quality;
-    const double total = m.background + r.total_seconds(), paper = c.paper_param_seconds + c.paper_cvt_seconds;
-    char line[1024];
-    std::snprintf(line, sizeof(line),
-                  "| %s | %s | %zu (%s) | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %s | %s | %.4f | %.4f | %.2f | %.2f | %.3f | %.2g |\n",
-                  c.name.c_str(), c.figure.c_str(), m.input_vertices,
-                  c.paper_input_vertices ? std::to_string(c.paper_input_vertices).c_str() : "-", q.number_of_vertices,
-                  m.background, r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], r.seconds[4], r.seconds[5], total,
-                  paper > 0 ? std::to_string(int(paper + 0.5)).c_str() : "-",
-                  paper > 0 ? (std::to_string(int(paper / total + 0.5)) + "x").c_str() : "-", q.G_min, q.G_avg, q.theta_min,
-                  q.theta_avg, q.percent_below_30, r.hausdorff_distance_relative);
-    md << line;
-    std::cerr << line;
-    sane = sane && q.number_of_vertices == c.vertices && r.inverted_triangles == 0 && q.G_avg > 0.8 && q.theta_min > 5;
-  }
+  for(const Case& c : cases)
+    if(only.empty() || c.name.find(only) != std::string::npos) md << isolated_row(c, runs, sane);
   md << "\nTimes are wall-clock seconds, median of " << runs << " run(s), on this machine (`nproc` = "
-     << std::thread::hardware_concurrency() << "). The paper's times are its Table 1 (parameterisation + CVT, "
+     << std::thread::hardware_concurrency() << ", number_of_threads = " << threads << ", 0 meaning all); CPU s is "
+     << "the CPU time of the case (every thread, background included); peak MB is the case's peak resident memory "
+     << "(getrusage in a process of its own), also per input vertex. The paper's times are its Table 1 (parameterisation + CVT, "
      << "Xeon E5620). Quality is measured in the metric (DESIGN.md 3); the paper reports it for the cyclide only "
      << "(Table 2: G_min 0.3771, G_avg 0.9068, theta_min 22.57, theta_avg 52.48, %<30 0.0187, 310 s). The metric "
      << "column of the surface cases includes building the curvature metric. Hausdorff / diag: the symmetric "

@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Surface_point.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
+#include <Aniso_conformal/internal/parallel_for.h>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -16,7 +17,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 /// \file Curvature_metric.h
@@ -32,6 +35,8 @@ struct Curvature_metric_options {
   int smoothing_iterations = 10; ///< rounds of k-ring averaging of the tensor field (>= 0)
   int smoothing_rings = 2;       ///< k of the k-ring neighbourhood of the averaging (>= 1)
   double flat_floor = 0.05;      ///< `s_big >= flat_floor * rms(s_big)`: flat parts become isotropic (>= 0)
+  /// threads of the per-vertex work (0 = every core); the field does not depend on it
+  unsigned number_of_threads = 0;
 };
 
 /*!
@@ -50,6 +55,9 @@ struct Curvature_metric_options {
  *    paper needed heavy smoothing, its Fig. 5), each neighbour's tensor first rotated into the vertex's
  *    tangent plane (the rotation taking its normal to the vertex's), re-projected, and step 2 is applied
  *    again. The result is scaled so that the median `s_big` is 1 (only the shape matters).
+ *
+ * Time and memory linear in the size of the surface (about `(smoothing_iterations + 1) * ring size`
+ * tensor products per vertex); the per-vertex work runs on `number_of_threads` threads.
  * \throws Invalid_input for options out of range
  *
  * \cgalModels `AnisotropicMetric`
@@ -71,39 +79,39 @@ public:
     const std::size_t n = s.number_of_vertices();
     const auto& P = s.points();
     const auto& N = s.vertex_normals();
+    const unsigned threads = o.number_of_threads;
 
     // 1. normal-cycle curvature tensors
     std::vector<Tensor> T(n, Tensor::Zero());
     std::vector<double> area(n, 0.0);
-    std::map<std::pair<std::size_t, std::size_t>, std::size_t> left;  // directed edge -> face on its left
     std::vector<Eigen::Vector3d> fn(s.number_of_faces());
     for(std::size_t f = 0; f < s.number_of_faces(); ++f) {
       const auto& t = s.faces()[f];
       const Eigen::Vector3d c = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]);
       fn[f] = c.normalized();
-      for(int k = 0; k < 3; ++k) {
-        area[t[k]] += c.norm() / 6;
-        left[{t[k], t[(k + 1) % 3]}] = f;
+      for(int k = 0; k < 3; ++k) area[t[k]] += c.norm() / 6;
+    }
+    // each interior edge once, in the order of its (smaller, larger) end, with the faces on its two sides
+    const Directed_edges out(s);
+    for(std::size_t a = 0; a < n; ++a)
+      for(std::uint32_t i = out.start[a]; i < out.start[a + 1]; ++i) {
+        const std::size_t b = out.head[i];
+        if(a > b) continue;
+        const std::uint32_t twin = out.find(b, a);
+        if(twin == out.none) continue;  // boundary edge: no dihedral angle
+        const Eigen::Vector3d d = P[b] - P[a];
+        const double len = d.norm();
+        const Eigen::Vector3d u = d / len, n1 = fn[out.face[i]], n2 = fn[out.face[twin]];
+        const double beta = std::atan2(n1.cross(n2).dot(u), n1.dot(n2));
+        const Tensor contribution = beta * len / 2 * u * u.transpose();
+        T[a] += contribution;
+        T[b] += contribution;
       }
-    }
-    for(const auto& e : left) {
-      const std::size_t a = e.first.first, b = e.first.second;
-      if(a > b) continue;
-      auto other = left.find({b, a});
-      if(other == left.end()) continue;  // boundary edge: no dihedral angle
-      const Eigen::Vector3d d = P[b] - P[a];
-      const double len = d.norm();
-      const Eigen::Vector3d u = d / len, n1 = fn[e.second], n2 = fn[other->second];
-      const double beta = std::atan2(n1.cross(n2).dot(u), n1.dot(n2));
-      const Tensor contribution = beta * len / 2 * u * u.transpose();
-      T[a] += contribution;
-      T[b] += contribution;
-    }
     m_kmin.resize(n);
     m_kmax.resize(n);
     std::vector<Tensor> M(n);
     std::vector<double> sbig(n);
-    for(std::size_t v = 0; v < n; ++v) {
+    internal::parallel_for(n, threads, [&](std::size_t v) {
       Eigen::Vector2d lambda;
       Eigen::Matrix<double, 3, 2> E;
       tangent_eigen(T[v] / std::max(area[v], 1e-300), N[v], lambda, E);
@@ -114,38 +122,24 @@ public:
       sbig[v] = s_big;
       // d_max = E.col(1) gets s_big, d_min = E.col(0) gets s_small
       M[v] = s_big * s_big * E.col(1) * E.col(1).transpose() + s_small * s_small * E.col(0) * E.col(0).transpose();
-    }
+    });
+    std::vector<Tensor>().swap(T);
     double rms = 0;
     for(double x : sbig) rms += x * x;
     rms = std::sqrt(rms / double(std::max<std::size_t>(1, n)));
     const double floor_value = o.flat_floor * rms > 0 ? o.flat_floor * rms : 1.0;
-    for(std::size_t v = 0; v < n; ++v) M[v] = bounded(M[v], N[v], floor_value, o.stretch_max);
+    internal::parallel_for(n, threads, [&](std::size_t v) { M[v] = bounded(M[v], N[v], floor_value, o.stretch_max); });
 
     // 3. k-ring smoothing
     if(o.smoothing_iterations > 0) {
-      std::vector<std::vector<std::size_t>> adj(n);
-      for(const auto& t : s.faces())
-        for(int k = 0; k < 3; ++k) adj[t[k]].push_back(t[(k + 1) % 3]);
-      std::vector<std::vector<std::size_t>> ring(n);
-      std::vector<int> mark(n, -1);
-      for(std::size_t v = 0; v < n; ++v) {
-        std::vector<std::size_t> frontier(1, v);
-        ring[v].push_back(v);
-        mark[v] = int(v);
-        for(int r = 0; r < o.smoothing_rings; ++r) {
-          std::vector<std::size_t> next;
-          for(std::size_t x : frontier)
-            for(std::size_t y : adj[x])
-              if(mark[y] != int(v)) { mark[y] = int(v); next.push_back(y); ring[v].push_back(y); }
-          frontier.swap(next);
-        }
-      }
+      const Rings ring(s, o.smoothing_rings, threads);
       std::vector<Tensor> tmp(n);
       for(int it = 0; it < o.smoothing_iterations; ++it) {
-        for(std::size_t v = 0; v < n; ++v) {
+        internal::parallel_for(n, threads, [&](std::size_t v) {
           Tensor acc = Tensor::Zero();
           std::size_t used = 0;
-          for(std::size_t w : ring[v]) {
+          for(std::uint32_t r = ring.start[v]; r < ring.start[v + 1]; ++r) {
+            const std::size_t w = ring.vertex[r];
             // transport M[w] into v's tangent plane first: averaging tensors of differently oriented
             // tangent planes in space would leak their strong part into the normal and lose anisotropy
             const Eigen::Vector3d k = N[w].cross(N[v]);
@@ -158,22 +152,22 @@ public:
             ++used;
           }
           tmp[v] = acc / double(used);  // v itself is always used
-        }
+        }, 512);
         M.swap(tmp);
       }
-      for(std::size_t v = 0; v < n; ++v) M[v] = bounded(M[v], N[v], floor_value, o.stretch_max);
+      internal::parallel_for(n, threads, [&](std::size_t v) { M[v] = bounded(M[v], N[v], floor_value, o.stretch_max); });
     }
 
     // scale: median s_big = 1
     std::vector<double> big(n);
     m_stretch.resize(n);
-    for(std::size_t v = 0; v < n; ++v) {
+    internal::parallel_for(n, threads, [&](std::size_t v) {
       Eigen::Vector2d l;
       Eigen::Matrix<double, 3, 2> E;
       tangent_eigen(M[v], N[v], l, E);
       big[v] = std::sqrt(std::abs(l[0]));
       m_stretch[v] = std::sqrt(std::abs(l[0]) / std::max(std::abs(l[1]), 1e-300));
-    }
+    });
     std::vector<double> sorted = big;
     std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(n / 2), sorted.end());
     const double median = n ? sorted[n / 2] : 1.0;
@@ -193,6 +187,97 @@ public:
   const std::vector<double>& stretch_ratios() const { return m_stretch; }
 
 private:
+  // the directed edges of the faces, by tail vertex (CSR), each list in face order: head, face on the left
+  struct Directed_edges {
+    static constexpr std::uint32_t none = std::uint32_t(-1);
+    std::vector<std::uint32_t> start, head, face;
+    explicit Directed_edges(const Input_surface& s)
+    {
+      const std::size_t n = s.number_of_vertices();
+      start.assign(n + 1, 0);
+      for(const auto& t : s.faces())
+        for(int k = 0; k < 3; ++k) ++start[t[k] + 1];
+      for(std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+      head.resize(start[n]);
+      face.resize(start[n]);
+      std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+      for(std::size_t f = 0; f < s.number_of_faces(); ++f) {
+        const auto& t = s.faces()[f];
+        for(int k = 0; k < 3; ++k) {
+          const std::uint32_t i = fill[t[k]]++;
+          head[i] = std::uint32_t(t[(k + 1) % 3]);
+          face[i] = std::uint32_t(f);
+        }
+      }
+      // by head within each tail, so that every edge is visited in the order of its ends
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> tmp;
+      for(std::size_t v = 0; v < n; ++v) {
+        tmp.clear();
+        for(std::uint32_t i = start[v]; i < start[v + 1]; ++i) tmp.emplace_back(head[i], face[i]);
+        std::sort(tmp.begin(), tmp.end());
+        for(std::uint32_t i = start[v]; i < start[v + 1]; ++i) std::tie(head[i], face[i]) = tmp[i - start[v]];
+      }
+    }
+    // the directed edge a -> b, or `none`
+    std::uint32_t find(std::size_t a, std::size_t b) const
+    {
+      for(std::uint32_t i = start[a]; i < start[a + 1]; ++i)
+        if(head[i] == b) return i;
+      return none;
+    }
+  };
+
+  // the k-rings of the smoothing (CSR): v first, then breadth-first over the neighbours in face order
+  struct Rings {
+    std::vector<std::uint32_t> start, vertex;
+    Rings(const Input_surface& s, int rings, unsigned threads)
+    {
+      const std::size_t n = s.number_of_vertices();
+      // the neighbours of each vertex in the order its faces list them
+      std::vector<std::uint32_t> astart(n + 1, 0), adj;
+      for(const auto& t : s.faces())
+        for(int k = 0; k < 3; ++k) ++astart[t[k] + 1];
+      for(std::size_t v = 0; v < n; ++v) astart[v + 1] += astart[v];
+      adj.resize(astart[n]);
+      {
+        std::vector<std::uint32_t> fill(astart.begin(), astart.end() - 1);
+        for(const auto& t : s.faces())
+          for(int k = 0; k < 3; ++k) adj[fill[t[k]]++] = std::uint32_t(t[(k + 1) % 3]);
+      }
+      // twice: the sizes, then the vertices; each block with its own marks
+      start.assign(n + 1, 0);
+      for(int pass = 0; pass < 2; ++pass) {
+        internal::parallel_blocks(n, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
+          std::vector<std::uint32_t> mark(n, std::uint32_t(-1)), frontier, next, ring;
+          for(std::size_t v = begin; v < end; ++v) {
+            ring.assign(1, std::uint32_t(v));
+            frontier.assign(1, std::uint32_t(v));
+            mark[v] = std::uint32_t(v);
+            for(int r = 0; r < rings; ++r) {
+              next.clear();
+              for(std::uint32_t x : frontier)
+                for(std::uint32_t i = astart[x]; i < astart[x + 1]; ++i) {
+                  const std::uint32_t y = adj[i];
+                  if(mark[y] != v) {
+                    mark[y] = std::uint32_t(v);
+                    next.push_back(y);
+                    ring.push_back(y);
+                  }
+                }
+              frontier.swap(next);
+            }
+            if(pass == 0) start[v + 1] = std::uint32_t(ring.size());
+            else std::copy(ring.begin(), ring.end(), vertex.begin() + start[v]);
+          }
+        });
+        if(pass == 0) {
+          for(std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+          vertex.resize(start[n]);
+        }
+      }
+    }
+  };
+
   // eigen-decomposition of M restricted to the tangent plane of n: lambda[0] has the largest |value|
   static void tangent_eigen(const Tensor& M, const Eigen::Vector3d& n, Eigen::Vector2d& lambda, Eigen::Matrix<double, 3, 2>& E)
   {

@@ -154,7 +154,7 @@ public:
   bool wrap(const Point& p, Point& image, Eigen::Matrix3d& T) const
   {
     int face;
-    Eigen::Vector3d bary;
+    Eigen::Vector3d bary = Eigen::Vector3d::Zero();
     for(std::size_t gi = 0; gi < m_band.elements().size(); ++gi) {
       // tiles in order of their distance: the fundamental domain first
       const Eigen::Matrix3d Ti = gi == 0 ? Eigen::Matrix3d::Identity() : m_band.inverse_elements()[gi];
@@ -342,7 +342,7 @@ private:
         m_band.ensure(m_band.reached() * 2 + 4 * m_face_size);
       }
       int t = 0;
-      Eigen::Vector3d bary;
+      Eigen::Vector3d bary = Eigen::Vector3d::Zero();
       locate_klein(internal::to_klein(w.points[i]), t, bary);
       w.slot[i] = std::size_t(t);
     }

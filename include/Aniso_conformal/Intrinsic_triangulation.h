@@ -9,11 +9,11 @@
 #include <Aniso_conformal/Surface_point.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -48,13 +48,30 @@ public:
     for(std::size_t i = 0; i < nv; ++i) m_input_vertex[i] = int(i);
     m_corner.assign(nv, 0);
     for(const auto& f : surface.faces()) m_faces.push_back({{int(f[0]), int(f[1]), int(f[2])}});
+    // the input's own angle sums (Euclidean, from the positions): what the boundary of a planar layout
+    // that keeps the input's shape is built from (conformal_embedding())
+    m_input_angle_sum.assign(nv, 0.0);
+    for(const auto& f : surface.faces())
+      for(int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d& p = surface.points()[f[std::size_t(k)]];
+        const Eigen::Vector3d a = surface.points()[f[std::size_t((k + 1) % 3)]] - p, b = surface.points()[f[std::size_t((k + 2) % 3)]] - p;
+        m_input_angle_sum[f[std::size_t(k)]] += std::atan2(a.cross(b).norm(), a.dot(b));
+      }
     m_twin.assign(3 * m_faces.size(), -1);
     m_length.assign(3 * m_faces.size(), std::numeric_limits<double>::quiet_NaN());
-    std::map<std::pair<int, int>, int> by_ends;
-    for(int h = 0; h < int(m_twin.size()); ++h) by_ends[{tail(h), head(h)}] = h;
+    // twins through the halfedges grouped by tail (linear; the input is a validated manifold, so each
+    // directed edge occurs once)
+    std::vector<int> start(nv + 1, 0), by_tail(m_twin.size());
+    for(int h = 0; h < int(m_twin.size()); ++h) ++start[std::size_t(tail(h)) + 1];
+    for(std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    {
+      std::vector<int> fill(start.begin(), start.end() - 1);
+      for(int h = 0; h < int(m_twin.size()); ++h) by_tail[std::size_t(fill[std::size_t(tail(h))]++)] = h;
+    }
     for(int h = 0; h < int(m_twin.size()); ++h) {
-      auto it = by_ends.find({head(h), tail(h)});
-      if(it != by_ends.end()) m_twin[h] = it->second;
+      const int t = tail(h), b = head(h);
+      for(int i = start[std::size_t(b)]; i < start[std::size_t(b) + 1]; ++i)
+        if(head(by_tail[std::size_t(i)]) == t) m_twin[h] = by_tail[std::size_t(i)];
     }
     m_out.assign(nv, -1);
     for(int h = 0; h < int(m_twin.size()); ++h) m_out[tail(h)] = h;
@@ -130,6 +147,14 @@ public:
     m_length[h] = l;
     if(m_twin[h] >= 0) m_length[m_twin[h]] = l;
   }
+  /*!
+   * the sum of the input triangles' angles (Euclidean, in radians) at the point of vertex `v`, measured
+   * on the input surface, not in the metric: at a boundary vertex, the input's interior angle there, so
+   * that `pi - input_angle_sum(v)` is the turning angle of the input's boundary (its geodesic curvature,
+   * concentrated at the vertex). A vertex inserted by a split gets `pi` on a boundary edge and `2 pi`
+   * inside (a point of an input edge or face).
+   */
+  double input_angle_sum(int v) const { return m_input_angle_sum[std::size_t(v)]; }
   /// marks `v` as a boundary corner (kept as an output vertex)
   void set_corner(int v, bool c) { m_corner[v] = c; }
   bool is_corner(int v) const { return m_corner[v] != 0; }                           ///< `true` for a boundary corner
@@ -143,27 +168,20 @@ public:
    */
   int flip(int h)
   {
-    int t = m_twin[h];
+    const int t = m_twin[h];
     if(t < 0) throw Internal_error("Intrinsic_triangulation::flip(): boundary edge");
-    int f0 = face(h), f1 = face(t);
-    int a = tail(h), b = head(h), c = opposite_vertex(h), d = opposite_vertex(t);
-    int hbc = next(h), hca = prev(h), had = next(t), hdb = prev(t);
-    int Tbc = m_twin[hbc], Tca = m_twin[hca], Tad = m_twin[had], Tdb = m_twin[hdb];
-    double Lbc = m_length[hbc], Lca = m_length[hca], Lad = m_length[had], Ldb = m_length[hdb];
+    const int f0 = face(h), f1 = face(t);
+    const int a = tail(h), b = head(h), c = opposite_vertex(h), d = opposite_vertex(t);
+    const int hbc = next(h), hca = prev(h), had = next(t), hdb = prev(t);
+    const int Tbc = m_twin[hbc], Tca = m_twin[hca], Tad = m_twin[had], Tdb = m_twin[hdb];
+    const double Lbc = m_length[hbc], Lca = m_length[hca], Lad = m_length[had], Ldb = m_length[hdb];
     m_faces[f0] = {{c, a, d}};
     m_faces[f1] = {{d, b, c}};
-    auto set = [&](int he, int tw, double len) {
-      m_twin[he] = tw;
-      if(tw >= 0) m_twin[tw] = he;
-      m_length[he] = len;
-    };
-    set(3 * f0 + 0, Tca, Lca);
-    set(3 * f0 + 1, Tad, Lad);
-    set(3 * f1 + 0, Tdb, Ldb);
-    set(3 * f1 + 1, Tbc, Lbc);
-    m_twin[3 * f0 + 2] = 3 * f1 + 2;
-    m_twin[3 * f1 + 2] = 3 * f0 + 2;
-    m_length[3 * f0 + 2] = m_length[3 * f1 + 2] = std::numeric_limits<double>::quiet_NaN();
+    link(3 * f0 + 0, Tca, Lca);
+    link(3 * f0 + 1, Tad, Lad);
+    link(3 * f1 + 0, Tdb, Ldb);
+    link(3 * f1 + 1, Tbc, Lbc);
+    link(3 * f0 + 2, 3 * f1 + 2, std::numeric_limits<double>::quiet_NaN());
     m_out[c] = 3 * f0 + 0;
     m_out[a] = 3 * f0 + 1;
     m_out[d] = 3 * f1 + 0;
@@ -178,52 +196,37 @@ public:
   int split(int h, const Surface_point& p, const Eigen::Matrix3d& Q)
   {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    int t = m_twin[h];
-    int m = int(m_points.size());
+    const int t = m_twin[h];
+    const int m = int(m_points.size());
     m_points.push_back(p);
     m_Q.push_back(Q);
     m_input_vertex.push_back(-1);
     m_corner.push_back(0);
+    m_input_angle_sum.push_back(t >= 0 ? 2 * 3.14159265358979323846 : 3.14159265358979323846);
     m_out.push_back(-1);
-    int f0 = face(h);
-    int a = tail(h), b = head(h), c = opposite_vertex(h);
-    int Tbc = m_twin[next(h)], Tca = m_twin[prev(h)];
-    double Lbc = m_length[next(h)], Lca = m_length[prev(h)];
-    int f2 = int(m_faces.size());
-    m_faces.push_back({{m, b, c}});
-    m_twin.resize(3 * m_faces.size(), -1);
-    m_length.resize(3 * m_faces.size(), nan);
-    m_faces[f0] = {{a, m, c}};
-    auto link = [&](int x, int y) {
-      m_twin[x] = y;
-      if(y >= 0) m_twin[y] = x;
-    };
+    const int f0 = face(h);
+    const int a = tail(h), b = head(h), c = opposite_vertex(h);
+    const int Tbc = m_twin[next(h)], Tca = m_twin[prev(h)];
+    const double Lbc = m_length[next(h)], Lca = m_length[prev(h)];
     // f0 = (a, m, c), f2 = (m, b, c)
-    link(3 * f0 + 1, 3 * f2 + 2);  // m->c / c->m
-    link(3 * f0 + 2, Tca);
-    m_length[3 * f0 + 2] = Lca;
-    link(3 * f2 + 1, Tbc);
-    m_length[3 * f2 + 1] = Lbc;
-    m_length[3 * f0 + 0] = m_length[3 * f0 + 1] = m_length[3 * f2 + 0] = m_length[3 * f2 + 2] = nan;
+    m_faces[f0] = {{a, m, c}};
+    const int f2 = add_face({{m, b, c}});
+    link(3 * f0 + 1, 3 * f2 + 2, nan);  // m->c / c->m
+    link(3 * f0 + 2, Tca, Lca);
+    link(3 * f2 + 1, Tbc, Lbc);
+    m_length[3 * f0 + 0] = m_length[3 * f2 + 0] = nan;
     if(t >= 0) {
-      int f1 = face(t);
-      int d = opposite_vertex(t);
-      int Tad = m_twin[next(t)], Tdb = m_twin[prev(t)];
-      double Lad = m_length[next(t)], Ldb = m_length[prev(t)];
-      int f3 = int(m_faces.size());
-      m_faces.push_back({{m, a, d}});
-      m_twin.resize(3 * m_faces.size(), -1);
-      m_length.resize(3 * m_faces.size(), nan);
-      m_faces[f1] = {{b, m, d}};
+      const int f1 = face(t), d = opposite_vertex(t);
+      const int Tad = m_twin[next(t)], Tdb = m_twin[prev(t)];
+      const double Lad = m_length[next(t)], Ldb = m_length[prev(t)];
       // f1 = (b, m, d), f3 = (m, a, d)
-      link(3 * f1 + 0, 3 * f2 + 0);  // b->m / m->b
-      link(3 * f1 + 1, 3 * f3 + 2);  // m->d / d->m
-      link(3 * f1 + 2, Tdb);
-      m_length[3 * f1 + 2] = Ldb;
-      link(3 * f3 + 0, 3 * f0 + 0);  // m->a / a->m
-      link(3 * f3 + 1, Tad);
-      m_length[3 * f3 + 1] = Lad;
-      m_length[3 * f1 + 0] = m_length[3 * f1 + 1] = m_length[3 * f3 + 0] = m_length[3 * f3 + 2] = nan;
+      m_faces[f1] = {{b, m, d}};
+      const int f3 = add_face({{m, a, d}});
+      link(3 * f1 + 0, 3 * f2 + 0, nan);  // b->m / m->b
+      link(3 * f1 + 1, 3 * f3 + 2, nan);  // m->d / d->m
+      link(3 * f1 + 2, Tdb, Ldb);
+      link(3 * f3 + 0, 3 * f0 + 0, nan);  // m->a / a->m
+      link(3 * f3 + 1, Tad, Lad);
       m_out[d] = 3 * f3 + 2;
     } else {
       m_twin[3 * f0 + 0] = -1;
@@ -261,10 +264,30 @@ public:
   /// @}
 
 private:
+  // makes halfedges x and y twins (y may be -1: a boundary), both of length `length`
+  void link(int x, int y, double length)
+  {
+    m_twin[x] = y;
+    m_length[x] = length;
+    if(y >= 0) {
+      m_twin[y] = x;
+      m_length[y] = length;
+    }
+  }
+  // appends the face with corners c, its halfedges without twins or lengths; returns its index
+  int add_face(const std::array<int, 3>& c)
+  {
+    m_faces.push_back(c);
+    m_twin.resize(3 * m_faces.size(), -1);
+    m_length.resize(3 * m_faces.size(), std::numeric_limits<double>::quiet_NaN());
+    return int(m_faces.size()) - 1;
+  }
+
   std::vector<Surface_point> m_points;
   std::vector<Eigen::Matrix3d> m_Q;
   std::vector<int> m_input_vertex;
   std::vector<char> m_corner;
+  std::vector<double> m_input_angle_sum;
   std::vector<std::array<int, 3>> m_faces;
   std::vector<int> m_twin;
   std::vector<double> m_length;

@@ -23,9 +23,11 @@ namespace Aniso_conformal {
 /*!
  * \ingroup PkgAnisoConformalDomains
  * the plane, for topological disks (2D domains, images, open curved patches): stage 3 is
- * `conformal_embedding()` (`u = 0` on the boundary, which keeps the boundary's metric length), stages
- * 4 and 5 run in `Planar_domain_traits` (the boundary is a 1D CVT, corners are fixed sites). Paper
- * sections 3.3-3.5.
+ * `conformal_embedding()` (by default the layout keeps the input's outline, its turning angles
+ * prescribed and its lengths free, `Planar_boundary::KEEP_SHAPE`; the named parameter
+ * `planar_boundary(Planar_boundary::KEEP_LENGTHS)` gives the paper's `u = 0` on the boundary), stages
+ * 4 and 5 run in `Planar_domain_traits` (the boundary is a 1D CVT in metric length, corners are fixed
+ * sites). Paper sections 3.3-3.5.
  *
  * \cgalModels `ParametricDomain`
  */
@@ -47,8 +49,32 @@ struct Planar_domain : internal::Domain_policy_base<Planar_embedding, Planar_dom
   {
     return conformal_embedding(itri, np);
   }
-  /// nothing beyond the figures every domain reports
-  static Domain_diagnostics diagnostics(const Embedding&, const Traits&) { return Domain_diagnostics(); }
+  /*!
+   * what the boundary kept: `boundary_keeps_shape` (1: the input's outline, `Planar_boundary::KEEP_SHAPE`;
+   * 0: the metric lengths), `convex_boundary` (1 if the outline touched or crossed itself in the layout
+   * and was made convex), `turning_defect` (radians: `2 pi` minus the input's total boundary turning, the
+   * Gaussian curvature of a curved patch, spread over the boundary), `added_boundary_sites` (sites added
+   * to keep the polygon of the boundary sites simple)
+   */
+  static Domain_diagnostics diagnostics(const Embedding& emb, const Traits& traits)
+  {
+    Domain_diagnostics d;
+    const bool shape = emb.boundary == Planar_boundary::KEEP_SHAPE;
+    d.add("boundary_keeps_shape", shape ? 1.0 : 0.0, "1 if the layout keeps the input's outline (turning angles), 0 if the boundary's metric lengths", true);
+    if(shape) {
+      d.add("convex_boundary", emb.convex_boundary ? 1.0 : 0.0,
+            "1 if the input's outline touched or crossed itself in the layout and was made convex", true);
+      d.add("turning_defect", emb.turning_defect, "2 pi minus the input's total boundary turning (radians), spread over the boundary");
+    }
+    d.add("added_boundary_sites", double(traits.number_of_added_boundary_sites()),
+          "boundary sites added so that their polygon does not touch or cross itself", true);
+    d.summary = !shape ? "boundary: metric lengths kept (u = 0)"
+                : emb.convex_boundary ? "boundary: made convex (the input's outline touches or crosses itself in the layout)"
+                                      : "boundary: the input's outline kept";
+    if(traits.number_of_added_boundary_sites() > 0)
+      d.summary += ", " + std::to_string(traits.number_of_added_boundary_sites()) + " boundary sites added";
+    return d;
+  }
   /// what an inverted output triangle most likely means here
   static const char* inverted_triangles_hint() { return "the metric is too strong for this background near its boundary"; }
 };

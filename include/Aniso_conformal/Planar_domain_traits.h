@@ -9,7 +9,9 @@
 #include <Aniso_conformal/conformal_embedding.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/conformal/planar_boundary.h>
 #include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
+#include <Aniso_conformal/internal/domains/simple_polygon_2.h>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -22,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <list>
 #include <random>
 #include <string>
@@ -37,11 +40,21 @@ namespace Aniso_conformal {
  * the planar domain of a disk-topology surface or a 2D domain: the background triangulation laid out
  * by `conformal_embedding()`, with the CVT density `cf^2` linear over each background triangle.
  *
- * Sites are ordered: the first `number_of_fixed_sites()` lie on the boundary (boundary corners, then
- * the others, in boundary order) and stay fixed; the rest move freely inside. The boundary sites are a
- * 1D CVT of the boundary: with `u = 0` on the boundary the layout keeps the boundary's metric length,
- * so they are spaced evenly in arclength between consecutive corners, at the spacing the requested
- * number of vertices implies for an equilateral mesh of the adjusted area (DESIGN.md 3).
+ * Sites are ordered: the first `number_of_fixed_sites()` lie on the boundary, in boundary order (each
+ * corner, then the sites up to the next corner) and stay fixed; the rest move freely inside. The
+ * boundary sites are a 1D CVT of the boundary: spaced evenly in *metric* length (the adjusted lengths of
+ * the background's boundary edges) between consecutive corners, at the spacing the requested number of
+ * vertices implies for an equilateral mesh of the adjusted area (DESIGN.md 3). With
+ * `Planar_boundary::KEEP_LENGTHS` the layout keeps the boundary's metric lengths and they are spaced
+ * evenly along the layout (the same spacing, as the paper does).
+ *
+ * The polygon of the boundary sites bounds the dual mesh. `initial_sites()` makes it simple: where two
+ * of its edges would touch or cross (sparse sites along a boundary that the layout bends strongly), a
+ * boundary site is added halfway (in metric length) between the two sites of each such edge, until none
+ * does (the added sites come out of the interior's share, so the total stays `n`). The free sites are
+ * kept strictly inside that polygon as well as inside the layout (`contains()`), so the constrained
+ * Delaunay triangulation of the dual has every site as a vertex and cannot fail on a disk whose layout
+ * is embedded (which `conformal_embedding()` guarantees with its default `Planar_boundary::KEEP_SHAPE`).
  *
  * Integration is exact: each background triangle is clipped against the Voronoi cells it meets (a
  * restricted Voronoi diagram, found by walking the Delaunay graph from the site nearest to a corner),
@@ -73,11 +86,12 @@ public:
   /*!
    * lays out the background of `itri` with the embedding `emb`; `threads` workers integrate (0 = hardware).
    * Also computes `adjusted_area()` from the current lengths of `itri`, for `initial_sites()`: build the
-   * traits after the embedding, from the triangulation it flipped.
+   * traits after the embedding, from the triangulation it flipped. The boundary sites are spaced in
+   * metric length unless `emb.boundary` is `Planar_boundary::KEEP_LENGTHS` (then along the layout).
    * \throws Invalid_input if the background has no boundary
    */
   Planar_domain_traits(const Intrinsic_triangulation& itri, const Planar_embedding& emb, unsigned threads = 0)
-    : m_itri(itri)
+    : m_itri(itri), m_metric_spacing(emb.boundary != Planar_boundary::KEEP_LENGTHS)
   {
     const std::size_t nf = itri.number_of_faces();
     std::vector<Eigen::Vector2d> centroids(nf);
@@ -133,12 +147,15 @@ public:
     face = m_tri[std::size_t(t)].face;
     return true;
   }
-  /// `true` if `p` is in the domain
+  /*!
+   * `true` if `p` is in the domain and, once `initial_sites()` has placed the boundary sites, strictly
+   * inside the polygon of the boundary sites (where a free site must stay for the dual)
+   */
   bool contains(const Point& p) const
   {
     int f = -1;
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    return locate(p, f, b, 0.0);
+    return locate(p, f, b, 0.0) && inside_site_polygon(p);
   }
   /// @}
 
@@ -146,10 +163,14 @@ public:
   /// @{
   /*!
    * places `n` sites: the boundary sites first (fixed: `number_of_fixed_sites()` becomes their number) at
-   * the spacing `n` implies for an equilateral mesh of the adjusted area, then `n - fixed` interior sites
-   * spread over the density (stratified along a space-filling curve, `internal::stratified_samples()`;
-   * deterministic for a `seed`).
+   * the spacing `n` implies for an equilateral mesh of the adjusted area, evenly in metric length between
+   * corners, with sites added where their polygon would touch or cross itself; then `n - fixed` interior
+   * sites spread over the density (stratified along a space-filling curve, `internal::stratified_samples()`;
+   * deterministic for a `seed`), a sample that falls between the polygon of the boundary sites and the
+   * domain's boundary moved just inside the polygon.
    * \throws Invalid_input if `n` is smaller than 3 or than the number of corners
+   * \throws Remeshing_failure if the polygon of the boundary sites can only be made simple with more than
+   *         `n` sites (a boundary far more convoluted than `n` vertices can follow)
    */
   std::vector<Point> initial_sites(std::size_t n, unsigned seed)
   {
@@ -161,19 +182,27 @@ public:
                           " vertices (the boundary has " + std::to_string(corners) + " corners); " +
                           std::to_string(n) + " were requested");
     // spacing h of an equilateral mesh with n vertices, nb = P/h of them on the boundary, covering the area
-    const double c = std::sqrt(3.0) / 4, P = m_perimeter, A = m_adjusted_area * (m_perimeter_metric_ratio);
+    const double c = std::sqrt(3.0) / 4;
+    const double P = m_metric_spacing ? m_metric_perimeter : m_perimeter;
+    const double A = m_metric_spacing ? m_adjusted_area : m_adjusted_area * (m_perimeter_metric_ratio);
     const double nn = std::max(1.0, double(n) - 1);
     const double h = (c * P + std::sqrt(c * c * P * P + 8 * c * nn * A)) / (4 * c * nn);
     place_boundary_sites(h, n);
+    separate_boundary_sites(n);
     m_sites_fixed = m_boundary_sites.size();
     std::vector<Point> sites;
     for(const auto& b : m_boundary_sites) sites.push_back(boundary_point(b));
+    build_site_polygon(sites);
     // interior: stratified sampling of the density along the Morton curve of the background triangles
     std::mt19937_64 rng(seed);
-    const std::vector<Point> inside = internal::stratified_samples(m_tri, n - sites.size(), rng);
+    std::vector<Point> inside = internal::stratified_samples(m_tri, n - sites.size(), rng);
+    for(Point& p : inside)
+      if(!inside_site_polygon(p)) p = pull_inside_site_polygon(p);
     sites.insert(sites.end(), inside.begin(), inside.end());
     return sites;
   }
+  /// the number of boundary sites `initial_sites()` added to make their polygon simple
+  std::size_t number_of_added_boundary_sites() const { return m_sites_added; }
   /// the number of fixed (boundary) sites placed by the last `initial_sites()`
   std::size_t number_of_fixed_sites() const { return m_sites_fixed; }
   /// where boundary site `i` (`i < number_of_fixed_sites()`) lies on the background boundary
@@ -261,31 +290,10 @@ public:
     }
     const std::size_t nb = m_sites_fixed;
     for(std::size_t i = 0; i < nb; ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % nb]);
+    // initial_sites() made the polygon simple, so no constraint splits another: a failure here is ours
     if(cdt.number_of_vertices() != sites.size())
-      throw Convergence_failure("dual mesh: the boundary polygon of the sites intersects itself", 0);
-    // faces inside the boundary polygon: reached from the infinite face by crossing one constraint
-    for(auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
-    std::list<CDT::Face_handle> border;
-    auto flood = [&](CDT::Face_handle start, int level) {
-      std::list<CDT::Face_handle> q(1, start);
-      while(!q.empty()) {
-        CDT::Face_handle f = q.front();
-        q.pop_front();
-        if(f->info() != -1) continue;
-        f->info() = level;
-        for(int i = 0; i < 3; ++i) {
-          CDT::Face_handle g = f->neighbor(i);
-          if(g->info() != -1) continue;
-          if(cdt.is_constrained(CDT::Edge(f, i))) border.push_back(g); else q.push_back(g);
-        }
-      }
-    };
-    flood(cdt.infinite_face(), 0);
-    while(!border.empty()) {
-      CDT::Face_handle f = border.front();
-      border.pop_front();
-      if(f->info() == -1) flood(f, 1);
-    }
+      throw Internal_error("dual mesh: the boundary polygon of the sites intersects itself");
+    mark_inside(cdt);
     // An "ear" (three consecutive boundary sites, the middle one not a corner) lies on one boundary
     // edge chain of the input: flat or nearly so on the surface even when the layout bulges. Flip its
     // inner edge when the quad it forms with the inside neighbour is convex.
@@ -329,10 +337,8 @@ public:
       tris.push_back(t);
     }
     for(std::size_t i = 0; i < sites.size(); ++i)
-      if(!used[i])
-        throw Convergence_failure("dual mesh: site " + std::to_string(i) +
-                                      " lies outside the polygon of the boundary sites",
-                                  0);
+      if(!used[i])  // free sites are kept strictly inside the polygon (contains()): a failure here is ours
+        throw Internal_error("dual mesh: site " + std::to_string(i) + " lies outside the polygon of the boundary sites");
     return tris;
   }
   /// @}
@@ -350,30 +356,18 @@ private:
     m_uv_of_vertex.assign(m_itri.number_of_vertices(), Point::Zero());
     for(const internal::Background_triangle& T : m_tri)
       for(int k = 0; k < 3; ++k) m_uv_of_vertex[m_itri.face_vertices(std::size_t(T.face))[k]] = T.p[k];
-    int h0 = -1;
-    for(int h = 0; h < int(m_itri.number_of_halfedges()); ++h)
-      if(m_itri.twin(h) < 0) { h0 = h; break; }
-    if(h0 < 0) throw Invalid_input("Planar_domain_traits: the background has no boundary");
-    // start at a corner if there is one, so corners split the loop into segments
-    int h = h0;
-    do {
-      if(m_itri.is_corner(m_itri.tail(h))) { h0 = h; break; }
-      h = m_itri.outgoing_halfedges(m_itri.head(h)).front();
-    } while(h != h0);
-    h = h0;
+    // starts at a corner if there is one, so corners split the loop into segments
+    m_boundary_halfedges = internal::boundary_halfedge_loop(m_itri, "Planar_domain_traits");
     m_boundary.clear();
-    m_boundary_halfedges.clear();
     m_perimeter = 0;
-    double metric_perimeter = 0;
-    do {
+    m_metric_perimeter = 0;
+    for(int h : m_boundary_halfedges) {
       m_boundary.push_back(m_itri.tail(h));
-      m_boundary_halfedges.push_back(h);
       m_perimeter += (m_uv_of_vertex[m_itri.head(h)] - m_uv_of_vertex[m_itri.tail(h)]).norm();
-      metric_perimeter += m_itri.length(h);
-      h = m_itri.outgoing_halfedges(m_itri.head(h)).front();
-    } while(h != h0 && m_boundary.size() <= m_itri.number_of_halfedges());
-    // u = 0 on the boundary makes both equal; the ratio converts metric areas to domain units
-    m_perimeter_metric_ratio = metric_perimeter > 0 ? std::pow(m_perimeter / metric_perimeter, 2) : 1.0;
+      m_metric_perimeter += m_itri.length(h);
+    }
+    // KEEP_LENGTHS makes both equal; the ratio converts metric areas to domain units
+    m_perimeter_metric_ratio = m_metric_perimeter > 0 ? std::pow(m_perimeter / m_metric_perimeter, 2) : 1.0;
   }
 
   Point boundary_point(const Boundary_location& b) const
@@ -385,6 +379,7 @@ private:
   void place_boundary_sites(double h, std::size_t n)
   {
     m_boundary_sites.clear();
+    m_boundary_site_index.clear();
     const std::size_t nb = m_boundary.size();
     std::vector<std::size_t> corner_pos;
     for(std::size_t i = 0; i < nb; ++i)
@@ -413,7 +408,10 @@ private:
     }
     for(std::size_t s = 0; s < corner_pos.size(); ++s) {
       const std::size_t i0 = corner_pos[s];
-      if(!no_corner) m_boundary_sites.push_back({m_boundary_halfedges[i0], 0.0});
+      if(!no_corner) {
+        m_boundary_sites.push_back({m_boundary_halfedges[i0], 0.0});
+        m_boundary_site_index.push_back(i0);
+      }
       const std::size_t m = counts[s];
       const double step = seg_len[s] / double(no_corner ? m : m + 1);
       // walk the segment, dropping a site every `step` of arclength
@@ -423,23 +421,148 @@ private:
         while(walked + edge_length(i % nb) < next) walked += edge_length(i++ % nb);
         const double t = std::min(1.0, std::max(0.0, (next - walked) / edge_length(i % nb)));
         m_boundary_sites.push_back({m_boundary_halfedges[i % nb], t});
+        m_boundary_site_index.push_back(i % nb);
       }
     }
   }
 
+  // Adds boundary sites until their polygon is simple: halfway, in the spacing's length, between the
+  // two sites of every edge of the polygon that touches or crosses another (or folds back on its
+  // neighbour). It ends: the polygon tends to the layout's boundary, which is simple.
+  void separate_boundary_sites(std::size_t n)
+  {
+    m_sites_added = 0;
+    const std::size_t nb = m_boundary.size();
+    std::vector<double> start(nb + 1, 0.0);  // arclength at the tail of each boundary edge
+    for(std::size_t i = 0; i < nb; ++i) start[i + 1] = start[i] + edge_length(i);
+    const double total = start[nb];
+    auto arclength = [&](std::size_t k) { return start[m_boundary_site_index[k]] + m_boundary_sites[k].t * edge_length(m_boundary_site_index[k]); };
+    std::vector<char> bad;
+    for(int round = 0; round < 200; ++round) {
+      std::vector<Point> polygon;
+      for(const Boundary_location& b : m_boundary_sites) polygon.push_back(boundary_point(b));
+      if(internal::polygon_defects(polygon, 0.0, bad) == 0) return;
+      for(std::size_t k = m_boundary_sites.size(); k-- > 0;) {
+        if(!bad[k]) continue;
+        double a = arclength(k), b = arclength((k + 1) % m_boundary_sites.size());
+        if(b <= a) b += total;
+        const double mid = std::fmod(0.5 * (a + b), total);
+        const std::size_t i = std::min(nb - 1, std::size_t(std::upper_bound(start.begin(), start.end(), mid) - start.begin()) - 1);
+        const double t = std::min(1.0, std::max(0.0, (mid - start[i]) / edge_length(i)));
+        m_boundary_sites.insert(m_boundary_sites.begin() + std::ptrdiff_t(k + 1), Boundary_location{m_boundary_halfedges[i], t});
+        m_boundary_site_index.insert(m_boundary_site_index.begin() + std::ptrdiff_t(k + 1), i);
+        ++m_sites_added;
+      }
+      if(m_boundary_sites.size() > n)
+        throw Remeshing_failure("the polygon of the boundary sites touches or crosses itself with fewer than " + std::to_string(n) +
+                                    " of them: the boundary is too convoluted in the layout for " + std::to_string(n) + " vertices");
+    }
+    throw Internal_error("Planar_domain_traits: the polygon of the boundary sites is still not simple after 200 rounds of added sites");
+  }
+
+  // the constrained Delaunay triangulation of the polygon of the boundary sites, for inside_site_polygon()
+  void build_site_polygon(const std::vector<Point>& boundary_sites)
+  {
+    m_polygon.clear();
+    std::vector<CDT::Vertex_handle> vh;
+    for(const Point& p : boundary_sites) {
+      vh.push_back(m_polygon.insert(K::Point_2(p.x(), p.y())));
+      vh.back()->info() = int(vh.size()) - 1;
+    }
+    for(std::size_t i = 0; i < vh.size(); ++i) m_polygon.insert_constraint(vh[i], vh[(i + 1) % vh.size()]);
+    if(m_polygon.number_of_vertices() != boundary_sites.size())
+      throw Internal_error("Planar_domain_traits: the polygon of the boundary sites is not simple");
+    mark_inside(m_polygon);
+  }
+
+  // `true` if `p` is strictly inside the polygon of the boundary sites (exact predicates), or if there
+  // is no such polygon yet
+  bool inside_site_polygon(const Point& p) const
+  {
+    if(m_polygon.number_of_vertices() == 0) return true;
+    CDT::Locate_type lt;
+    int li = -1;
+    const CDT::Face_handle f = m_polygon.locate(K::Point_2(p.x(), p.y()), lt, li);
+    if(lt == CDT::FACE) return f->info() % 2 == 1;
+    if(lt == CDT::EDGE) return !m_polygon.is_constrained(CDT::Edge(f, li)) && f->info() % 2 == 1;
+    return false;  // on a boundary site, or outside the hull
+  }
+
+  // A point of the domain just inside the polygon of the boundary sites, near `p` (which lies between the
+  // polygon and the domain's boundary): across the nearest edge of the polygon, as far inside as `p` is
+  // outside, closer if that leaves the domain.
+  Point pull_inside_site_polygon(const Point& p) const
+  {
+    const std::size_t nb = m_boundary_sites.size();
+    std::size_t best = 0;
+    double best_d = std::numeric_limits<double>::infinity();
+    Point foot = p;
+    for(std::size_t k = 0; k < nb; ++k) {
+      const Point a = boundary_point(m_boundary_sites[k]), b = boundary_point(m_boundary_sites[(k + 1) % nb]);
+      const double t = std::min(0.9, std::max(0.1, (p - a).dot(b - a) / std::max(1e-300, (b - a).squaredNorm())));
+      const Point q = a + t * (b - a);
+      if((p - q).norm() < best_d) {
+        best_d = (p - q).norm();
+        best = k;
+        foot = q;
+      }
+    }
+    const Point a = boundary_point(m_boundary_sites[best]), b = boundary_point(m_boundary_sites[(best + 1) % nb]);
+    const Point inward = Point(a.y() - b.y(), b.x() - a.x()).normalized();  // left of a -> b: the polygon is counterclockwise
+    double d = best_d + 1e-3 * (b - a).norm();
+    for(int k = 0; k < 60; ++k, d *= 0.5) {
+      const Point q = foot + d * inward;
+      if(contains(q)) return q;
+    }
+    throw Internal_error("Planar_domain_traits: no point of the domain inside the polygon of the boundary sites near an initial site");
+  }
+
+  // marks the faces of `cdt` inside its constraints (info odd: reached from the infinite face by
+  // crossing an odd number of constraints), the others even
+  static void mark_inside(CDT& cdt)
+  {
+    for(auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+    std::list<CDT::Face_handle> border;
+    auto flood = [&](CDT::Face_handle start, int level) {
+      std::list<CDT::Face_handle> q(1, start);
+      while(!q.empty()) {
+        CDT::Face_handle f = q.front();
+        q.pop_front();
+        if(f->info() != -1) continue;
+        f->info() = level;
+        for(int i = 0; i < 3; ++i) {
+          CDT::Face_handle g = f->neighbor(i);
+          if(g->info() != -1) continue;
+          if(cdt.is_constrained(CDT::Edge(f, i))) border.push_back(g); else q.push_back(g);
+        }
+      }
+    };
+    flood(cdt.infinite_face(), 0);
+    while(!border.empty()) {
+      CDT::Face_handle f = border.front();
+      border.pop_front();
+      if(f->info() == -1) flood(f, 1);
+    }
+  }
+
+  // the length of boundary edge i that the boundary sites are spaced along: metric, or in the layout
   double edge_length(std::size_t i) const
   {
     const int h = m_boundary_halfedges[i];
+    if(m_metric_spacing) return m_itri.length(h);
     return (m_uv_of_vertex[m_itri.head(h)] - m_uv_of_vertex[m_itri.tail(h)]).norm();
   }
 
   const Intrinsic_triangulation& m_itri;
+  bool m_metric_spacing = true;  // boundary sites spaced in metric length (else along the layout)
   std::vector<internal::Background_triangle> m_tri;
   std::vector<Point> m_uv_of_vertex;
   std::vector<int> m_boundary, m_boundary_halfedges;
   std::vector<Boundary_location> m_boundary_sites;
-  std::size_t m_sites_fixed = 0;
-  double m_total_mass = 0, m_area = 0, m_adjusted_area = 0, m_perimeter = 0, m_perimeter_metric_ratio = 1;
+  std::vector<std::size_t> m_boundary_site_index;  // position in the loop of each boundary site's edge
+  std::size_t m_sites_fixed = 0, m_sites_added = 0;
+  CDT m_polygon;  // the polygon of the boundary sites, faces inside marked odd
+  double m_total_mass = 0, m_area = 0, m_adjusted_area = 0, m_perimeter = 0, m_metric_perimeter = 0, m_perimeter_metric_ratio = 1;
   internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
 };

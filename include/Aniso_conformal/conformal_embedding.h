@@ -9,6 +9,9 @@
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/internal/conformal/euclidean_conformal_metric.h>
 #include <Aniso_conformal/internal/conformal/layout.h>
+#include <Aniso_conformal/internal/conformal/planar_boundary.h>
+#include <Aniso_conformal/internal/domains/simple_polygon_2.h>
+#include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/parameters.h>
 
@@ -30,23 +33,55 @@ namespace Aniso_conformal {
  */
 struct Planar_embedding {
   std::vector<Eigen::Vector2d> uv;         ///< domain position of each vertex
-  std::vector<double> u;                   ///< log scale factor of each vertex (0 on the boundary)
+  /// log scale factor of each vertex: 0 on the boundary with `Planar_boundary::KEEP_LENGTHS`; with
+  /// `KEEP_SHAPE` shifted by a constant so that the layout's area is the adjusted (metric) area
+  std::vector<double> u;
   std::vector<double> conformal_factor;    ///< `cf(v)`: adjusted area around v over domain area around v (paper eq. 6)
-  std::size_t iterations = 0;              ///< Newton iterations
-  double residual = 0;                     ///< max |2 pi - angle sum| over interior vertices at the end
+  std::size_t iterations = 0;              ///< Newton iterations (of the solve that was kept)
+  /// max |target - angle sum| over the vertices solved for at the end (radians): interior vertices
+  /// (target `2 pi`), and with `KEEP_SHAPE` the boundary vertices (target `pi` minus the turning angle)
+  double residual = 0;
   std::size_t degenerate_triangles = 0;    ///< triangles treated as flat at the end of the solve (0 normally)
   std::size_t flips = 0;                   ///< intrinsic Delaunay flips made during the solve
+  Planar_boundary boundary = Planar_boundary::KEEP_SHAPE;  ///< what the boundary kept
+  /// `KEEP_SHAPE` only: `true` if the input's outline would have touched or crossed itself in the
+  /// layout (a boundary that touches itself), so reflex turns were dropped and the layout is convex
+  bool convex_boundary = false;
+  /// `KEEP_SHAPE` only: `2 pi` minus the sum of the input's boundary turning angles (radians): the
+  /// total Gaussian curvature of a curved patch, rounding on a planar input; spread over the boundary
+  double turning_defect = 0;
+  /// the turning angle of the layout's boundary at each boundary vertex (`pi` minus its angle sum in
+  /// the layout; 0 elsewhere), radians: with `KEEP_SHAPE` the prescribed one, within the tolerance
+  std::vector<double> boundary_turning;
 };
 
 
 /*!
  * \ingroup PkgAnisoConformalStages
  * computes a conformal embedding of the disk `itri` into the plane (stage 3, DESIGN.md 3): discrete
- * conformal equivalence (Springborn, Schroeder, Pinkall 2008) with per-vertex log scales `u`, scaled
- * lengths `l'_ij = exp((u_i + u_j) / 2) l_ij`, `u = 0` on the boundary (boundary lengths are kept) and
- * angle sum `2 pi` at interior vertices, solved by Newton's method with the cotangent Laplacian as
- * Hessian (Eigen's sparse Cholesky) and a backtracking line search; then laid out by unfolding
- * triangles breadth-first, and the conformal factor computed per vertex (paper eq.\ 6).
+ * conformal equivalence (Springborn, Schroeder, Pinkall 2008) with per-vertex log scales `u` and scaled
+ * lengths `l'_ij = exp((u_i + u_j) / 2) l_ij`, angle sum `2 pi` at interior vertices, solved by Newton's
+ * method with the cotangent Laplacian as Hessian (CHOLMOD's sparse Cholesky when the build found it and the system is large, else Eigen's SimplicialLDLT) and a backtracking line
+ * search; then laid out by unfolding triangles breadth-first, and the conformal factor computed per
+ * vertex (paper eq.\ 6). What the boundary keeps is the named parameter `planar_boundary`:
+ *
+ * - `Planar_boundary::KEEP_SHAPE` (the default): at each boundary vertex the angle sum is prescribed,
+ *   `pi` minus the input's turning angle there (`pi - Intrinsic_triangulation::input_angle_sum()`: the
+ *   geodesic curvature of the input's boundary, measured on the input, not in the metric), the sum made
+ *   `2 pi` by Gauss-Bonnet (on a curved patch the difference, its total Gaussian curvature, is spread
+ *   over the non-corner boundary vertices); `u` is free on the boundary too (fixed at one vertex for the
+ *   scale, then shifted so that the layout's area is the adjusted area). This is the prescribed
+ *   geodesic curvature boundary condition of Springborn, Schroeder and Pinkall (2008, section 4) with
+ *   the input's own curvature, as in boundary first flattening (Sawhney and Crane 2017): the layout has
+ *   the input's outline (straight runs stay straight, corners keep their angle: an L stays an L, a
+ *   square becomes a rectangle) and the boundary's lengths adapt, so the conformal factor stays bounded
+ *   where `u = 0` makes it explode (a strong image metric near the border). If that outline touches or
+ *   crosses itself in the layout (checked exactly, with a margin of `1e-9` of the layout's diameter: a
+ *   boundary that touches itself, as a ring cut open along a zero-width slit), or the solve fails, it is
+ *   solved again with a convex outline (reflex turns dropped, the others scaled to `2 pi`), which is
+ *   always embedded (`Planar_embedding::convex_boundary`).
+ * - `Planar_boundary::KEEP_LENGTHS` (the paper's): `u = 0` on the boundary, which keeps the boundary's
+ *   metric lengths and bends it as the metric demands; its layout is not guaranteed to be embedded.
  *
  * Before every evaluation the triangulation is made intrinsically Delaunay for the scaled lengths
  * (Gillespie, Springborn and Crane 2021): interior edges are flipped, the new edge's length given by
@@ -56,51 +91,67 @@ struct Planar_embedding {
  *
  * \param itri a disk-topology triangulation with valid edge lengths (after `adjust_edge_lengths()`);
  *        interior edges may be flipped
- * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
- *        (default `1e-9`, on the max angle-sum error in radians), `max_flips_per_edge` (default 50: the
- *        intrinsic Delaunay flips of one evaluation are at most that many per interior edge, plus 100), `visitor`
+ * \param np optional named parameters: `planar_boundary` (default `Planar_boundary::KEEP_SHAPE`),
+ *        `max_conformal_iterations` (default 100), `conformal_tolerance` (default `1e-9`, on the max
+ *        angle-sum error in radians), `max_flips_per_edge` (default 50: the intrinsic Delaunay flips of
+ *        one evaluation are at most that many per interior edge, plus 100), `visitor`
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`).
+ * \returns the layout `uv` (in the units of the metric lengths: with `KEEP_SHAPE` its area is the adjusted
+ *          area), `u`, the conformal factor per vertex, the solver's figures
  * \throws Invalid_input if `itri` has no boundary
  * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, if the
  *         factorisation fails, or if the layout has inverted triangles (with the residual reached)
+ * \throws Remeshing_failure if the layout's boundary touches or crosses itself: with `KEEP_LENGTHS`
+ *         (the message suggests `KEEP_SHAPE`), or with `KEEP_SHAPE` even once made convex (not met)
  */
 template <typename NamedParameters = parameters::Default_named_parameters>
 Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
                                      const NamedParameters& np = parameters::default_values())
 {
-  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
-  std::vector<char> fixed(std::size_t(nv), 0);
-  for(int v = 0; v < nv; ++v) fixed[v] = itri.is_boundary_vertex(v);
-  if(std::find(fixed.begin(), fixed.end(), 1) == fixed.end())
+  const double pi = 3.14159265358979323846;
+  const int nv = int(itri.number_of_vertices());
+  std::vector<char> boundary(std::size_t(nv), 0);
+  for(int v = 0; v < nv; ++v) boundary[std::size_t(v)] = itri.is_boundary_vertex(v);
+  if(std::find(boundary.begin(), boundary.end(), 1) == boundary.end())
     throw Invalid_input("conformal_embedding(): the triangulation has no boundary (not a disk)");
+  // the boundary loop as halfedges, found again after every solve: a flip renumbers the halfedges of its two faces
+  auto boundary_loop = [&] { return internal::boundary_halfedge_loop(itri, "conformal_embedding()"); };
 
   Planar_embedding emb;
-  internal::solve_euclidean_conformal_metric(itri, fixed, np, "conformal embedding", emb);
-
-  // ---- layout: unfold breadth-first across the interior edges, each vertex placed once
-  std::vector<std::array<double, 3>> L(nf);
-  for(int f = 0; f < nf; ++f) L[f] = internal::scaled_face_lengths(itri, f, emb.u);
-  emb.uv.assign(nv, Eigen::Vector2d::Zero());
-  std::vector<char> placed(nv, 0), done;
-  internal::unfold_breadth_first(itri, L, 0, Eigen::Vector2d(0, 0), Eigen::Vector2d(L[0][0], 0),
-                                 [&](int h) { return itri.twin(h) >= 0; }, internal::third_point, done, &emb.uv, &placed);
-
-  // ---- validity and conformal factor
-  std::size_t inverted = 0;
-  std::vector<double> domain_area(nf);
-  for(int f = 0; f < nf; ++f) {
-    const auto& c = itri.face_vertices(f);
-    const Eigen::Vector2d e1 = emb.uv[c[1]] - emb.uv[c[0]], e2 = emb.uv[c[2]] - emb.uv[c[0]];
-    const double a_dom = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
-    if(!(a_dom > 0)) ++inverted;
-    domain_area[f] = std::max(a_dom, 0.0);
+  emb.boundary = internal::planar_boundary(np);
+  if(emb.boundary == Planar_boundary::KEEP_LENGTHS) {
+    internal::solve_euclidean_conformal_metric(itri, boundary, np, "conformal embedding", emb);
+    const std::vector<int> loop = boundary_loop();
+    internal::lay_out_planar_embedding(itri, loop, emb);
+    if(!internal::planar_boundary_is_embedded(emb.uv, itri, loop, 0.0))
+      throw Remeshing_failure("conformal embedding: with the boundary's metric lengths kept (Planar_boundary::KEEP_LENGTHS), "
+                              "the layout's boundary crosses itself (the metric bends it too much); the default, "
+                              "Planar_boundary::KEEP_SHAPE, keeps the input's outline instead");
+    return emb;
   }
-  if(inverted > 0)
-    throw Convergence_failure("conformal embedding: the layout has " + std::to_string(inverted) +
-                                  " inverted or flat triangles (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
-                              double(inverted));
-  emb.conformal_factor = internal::vertex_conformal_factors(itri, domain_area);
-  return emb;
+
+  // the input's outline first, a convex one if that is not embedded
+  std::vector<char> gauge(std::size_t(nv), 0);
+  gauge[std::size_t(itri.tail(boundary_loop()[0]))] = 1;  // u is defined up to a constant: fixed at one vertex, shifted after
+  for(const bool convex : {false, true}) {
+    std::vector<double> target(std::size_t(nv), 2 * pi);
+    std::vector<int> loop = boundary_loop();
+    const std::vector<double> turn = internal::boundary_turning_angles(itri, loop, convex, emb.turning_defect);
+    for(std::size_t i = 0; i < loop.size(); ++i) target[std::size_t(itri.tail(loop[i]))] = pi - turn[i];
+    emb.convex_boundary = convex;
+    try {
+      internal::solve_euclidean_conformal_metric(itri, gauge, np, "conformal embedding", emb, nullptr, nullptr, &target);
+      internal::scale_to_adjusted_area(itri, emb.u);
+      loop = boundary_loop();
+      internal::lay_out_planar_embedding(itri, loop, emb);
+    } catch(const Convergence_failure&) {
+      if(convex) throw;
+      continue;  // the input's outline could not be laid out: try the convex one
+    }
+    if(internal::planar_boundary_is_embedded(emb.uv, itri, loop, 1e-9)) return emb;
+  }
+  throw Remeshing_failure("conformal embedding: the layout's boundary touches or crosses itself even with a convex outline "
+                          "(rounding on a background whose boundary is nearly flat everywhere?)");
 }
 
 } // namespace Aniso_conformal

@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Surface_point.h>
+#include <Aniso_conformal/internal/parallel_for.h>
 
 #include <Eigen/Core>
 
@@ -40,38 +41,50 @@ struct Remeshed_surface {
  * their barycentric position exactly, so they lie on the input boundary; the other sites of a curved
  * surface are projected onto it (the background's flipped edges are chords).
  *
+ * Time linear in the number of sites (plus the domain's Delaunay dual and one closest-point query per
+ * site); the projections run on `number_of_threads` threads (0 = every core), the domain's location
+ * queries on the calling thread (a traits class need not be safe for concurrent use). The result does not
+ * depend on the number of threads.
+ *
  * \tparam DomainTraits a model of `ParametricDomainTraits` (`Planar_domain_traits`)
  * \throws Convergence_failure if a site cannot be located or the dual is not a valid triangulation
  */
 template <typename DomainTraits>
 Remeshed_surface extract_dual_mesh(const Input_surface& surface, const Intrinsic_triangulation& itri,
-                                   const DomainTraits& domain, const std::vector<typename DomainTraits::Point>& sites)
+                                   const DomainTraits& domain, const std::vector<typename DomainTraits::Point>& sites,
+                                   unsigned number_of_threads = 0)
 {
   Remeshed_surface out;
   out.faces = domain.dual_triangles(sites);
-  out.points.resize(sites.size());
-  out.surface_points.resize(sites.size());
+  const std::size_t ns = sites.size();
+  out.points.resize(ns);
+  out.surface_points.resize(ns);
   const bool planar = surface.is_planar();
-  for(std::size_t i = 0; i < sites.size(); ++i) {
-    int f = -1;
-    Eigen::Vector3d bary = Eigen::Vector3d::Zero();
-    if(!domain.background_location(i, sites[i], f, bary))
+  // where each site lies on the background
+  std::vector<int> face(ns, -1);
+  std::vector<Eigen::Vector3d> bary(ns, Eigen::Vector3d::Zero());
+  for(std::size_t i = 0; i < ns; ++i)
+    if(!domain.background_location(i, sites[i], face[i], bary[i]))
       throw Convergence_failure("dual mesh: site " + std::to_string(i) + " lies outside the domain", 0);
-    const auto& c = itri.face_vertices(std::size_t(f));
+  const std::size_t fixed = domain.number_of_fixed_sites();
+  if(ns > 0) surface.project(surface.points().front());  // builds the AABB tree before the threads query it
+  // back onto the input
+  internal::parallel_for(ns, number_of_threads, [&](std::size_t i) {
+    const auto& c = itri.face_vertices(std::size_t(face[i]));
     int at_vertex = -1;
     for(int k = 0; k < 3; ++k)
-      if(bary[k] == 1.0) at_vertex = c[k];
+      if(bary[i][k] == 1.0) at_vertex = c[k];
     if(at_vertex >= 0 && itri.input_vertex(at_vertex) >= 0) {
       out.surface_points[i] = itri.point(at_vertex);
     } else {
-      const Eigen::Vector3d x = bary[0] * itri.position(c[0]) + bary[1] * itri.position(c[1]) + bary[2] * itri.position(c[2]);
+      const Eigen::Vector3d x = bary[i][0] * itri.position(c[0]) + bary[i][1] * itri.position(c[1]) + bary[i][2] * itri.position(c[2]);
       out.surface_points[i] = surface.project(x);
       // exact in the plane (keeps z = 0 bit for bit) and on boundary edges, which are input edges
-      if(planar || i < domain.number_of_fixed_sites()) out.surface_points[i].position = x;
+      if(planar || i < fixed) out.surface_points[i].position = x;
     }
     out.points[i] = out.surface_points[i].position;
     if(planar) out.points[i].z() = 0;
-  }
+  }, 512);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_MESH_QUALITY_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/internal/parallel_for.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -12,7 +13,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <utility>
 #include <vector>
 
@@ -47,27 +47,30 @@ struct Quality_report {
 /*!
  * \ingroup PkgAnisoConformalQuality
  * measures the quality of the mesh (`points`, `faces`) in the metric whose square roots at the
- * vertices are `Q` (DESIGN.md 3 "Quality").
+ * vertices are `Q` (DESIGN.md 3 "Quality"). Time linear in the size of the mesh (plus sorting its edges);
+ * the per-triangle and per-edge work runs on `number_of_threads` threads (0 = every core), the sums in
+ * face and edge order, so the report does not depend on the number of threads.
  * \throws Invalid_input if the sizes disagree or the mesh is empty
  */
 inline Quality_report compute_mesh_quality(const std::vector<Eigen::Vector3d>& points,
                                            const std::vector<std::array<std::size_t, 3>>& faces,
-                                           const std::vector<Eigen::Matrix3d>& Q)
+                                           const std::vector<Eigen::Matrix3d>& Q, unsigned number_of_threads = 0)
 {
   if(points.size() != Q.size()) throw Invalid_input("compute_mesh_quality(): one metric per vertex is needed");
   if(faces.empty()) throw Invalid_input("compute_mesh_quality(): the mesh has no triangle");
-  const double rad = 180.0 / 3.14159265358979323846;
-  Quality_report r;
-  r.number_of_vertices = points.size();
-  r.number_of_triangles = faces.size();
-  r.angle_histogram.assign(36, 0.0);
-  r.triangle_G.reserve(faces.size());
-  r.G_min = 1e300;
-  r.theta_min = 1e300;
-  std::size_t below = 0;
-  for(const auto& f : faces) {
+  for(const auto& f : faces)
     for(std::size_t k = 0; k < 3; ++k)
       if(f[k] >= points.size()) throw Invalid_input("compute_mesh_quality(): face index out of range");
+  const double rad = 180.0 / 3.14159265358979323846;
+  const std::size_t nf = faces.size();
+  Quality_report r;
+  r.number_of_vertices = points.size();
+  r.number_of_triangles = nf;
+  r.angle_histogram.assign(36, 0.0);
+  r.triangle_G.resize(nf);
+  std::vector<std::array<double, 3>> angle(nf);  // degrees, at the corners
+  internal::parallel_for(nf, number_of_threads, [&](std::size_t t) {
+    const auto& f = faces[t];
     const Eigen::Matrix3d QT = (Q[f[0]] + Q[f[1]] + Q[f[2]]) / 3.0;
     std::array<Eigen::Vector3d, 3> p = {{QT * points[f[0]], QT * points[f[1]], QT * points[f[2]]}};
     std::array<double, 3> l;
@@ -75,14 +78,22 @@ inline Quality_report compute_mesh_quality(const std::vector<Eigen::Vector3d>& p
     const double S = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     const double half_perimeter = 0.5 * (l[0] + l[1] + l[2]);
     const double h = std::max({l[0], l[1], l[2]});
-    const double G = (half_perimeter > 0 && h > 0) ? 2 * std::sqrt(3.0) * S / (half_perimeter * h) : 0.0;
+    r.triangle_G[t] = (half_perimeter > 0 && h > 0) ? 2 * std::sqrt(3.0) * S / (half_perimeter * h) : 0.0;
+    for(int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+      angle[t][k] = std::atan2(u.cross(v).norm(), u.dot(v)) * rad;
+    }
+  }, 1024);
+  r.G_min = 1e300;
+  r.theta_min = 1e300;
+  std::size_t below = 0;
+  for(std::size_t t = 0; t < nf; ++t) {
+    const double G = r.triangle_G[t];
     r.G_min = std::min(r.G_min, G);
-    r.triangle_G.push_back(G);
     r.G_avg += G;
     double smallest = 1e300;
     for(int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-      const double a = std::atan2(u.cross(v).norm(), u.dot(v)) * rad;
+      const double a = angle[t][k];
       smallest = std::min(smallest, a);
       r.theta_max = std::max(r.theta_max, a);
       r.angle_histogram[std::min<std::size_t>(35, std::size_t(std::max(0.0, a) / r.bin_width))] += 1;
@@ -91,26 +102,30 @@ inline Quality_report compute_mesh_quality(const std::vector<Eigen::Vector3d>& p
     r.theta_avg += smallest;
     if(smallest < 30) ++below;
   }
-  r.G_avg /= double(faces.size());
-  r.theta_avg /= double(faces.size());
-  r.percent_below_30 = 100.0 * double(below) / double(faces.size());
+  r.G_avg /= double(nf);
+  r.theta_avg /= double(nf);
+  r.percent_below_30 = 100.0 * double(below) / double(nf);
 
-  std::map<std::pair<std::size_t, std::size_t>, double> edges;
+  // every edge once, ordered by its (smaller, larger) end
+  std::vector<std::pair<std::size_t, std::size_t>> edges;
+  edges.reserve(3 * nf);
   for(const auto& f : faces)
-    for(int k = 0; k < 3; ++k) {
-      const std::size_t a = f[k], b = f[(k + 1) % 3];
-      const auto key = std::minmax(a, b);
-      if(edges.count(key)) continue;
-      edges[key] = (0.5 * (Q[a] + Q[b]) * (points[b] - points[a])).norm();
-    }
+    for(int k = 0; k < 3; ++k) edges.push_back(std::minmax(f[k], f[(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> length(edges.size());
+  internal::parallel_for(edges.size(), number_of_threads, [&](std::size_t e) {
+    const std::size_t a = edges[e].first, b = edges[e].second;
+    length[e] = (0.5 * (Q[a] + Q[b]) * (points[b] - points[a])).norm();
+  });
   double sum = 0;
-  for(const auto& e : edges) sum += e.second;
+  for(double x : length) sum += x;
   r.edge_length_mean = sum / double(edges.size());
   double var = 0;
   r.edge_length_min = 1e300;
   r.edge_length_max = 0;
-  for(const auto& e : edges) {
-    const double x = e.second / r.edge_length_mean;
+  for(double e : length) {
+    const double x = e / r.edge_length_mean;
     var += (x - 1) * (x - 1);
     r.edge_length_min = std::min(r.edge_length_min, x);
     r.edge_length_max = std::max(r.edge_length_max, x);

@@ -44,6 +44,22 @@ enum class Parametric_domain {
 
 /*!
  * \ingroup PkgAnisoConformalParameters
+ * what the conformal map of a disk into the plane keeps of the boundary (stage 3, `conformal_embedding()`)
+ */
+enum class Planar_boundary {
+  /// the input's shape (the default): the turning angle of the input's boundary is prescribed at every
+  /// boundary vertex (its corners keep theirs), the lengths along the boundary are free, so the layout is
+  /// the input's outline (an L stays an L, a square becomes a rectangle) and the conformal factor stays
+  /// bounded; when that outline would touch or cross itself (a boundary that touches itself), a convex one
+  KEEP_SHAPE,
+  /// the boundary's metric lengths (`u = 0` on the boundary, the paper's choice): the layout bends the
+  /// boundary as the metric demands, which can make conformal factors huge near it (images at a strong
+  /// anisotropy) or the layout overlap itself
+  KEEP_LENGTHS
+};
+
+/*!
+ * \ingroup PkgAnisoConformalParameters
  * the name of a domain, as the command-line tool spells it ("plane", "flat-torus", ...)
  */
 inline const char* domain_name(Parametric_domain d)

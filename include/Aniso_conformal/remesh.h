@@ -80,7 +80,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *   - `corner_angle` (default 30): boundary turning angle, in degrees, above which a vertex is a corner;
  *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
  *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
- *   - `number_of_threads` (default 0 = all cores) for the CVT integration;
+ *   - `number_of_threads` (default 0 = all cores) for the CVT integration, the dual mesh's projections and
+ *     the quality (the output does not depend on it);
  *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).
  * \returns the output mesh as arrays
  * \throws Remeshing_failure if the topology has no domain in this version (a surface with several boundary

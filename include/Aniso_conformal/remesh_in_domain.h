@@ -13,12 +13,14 @@
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
+#include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,51 @@
 /// program that knows its topology compiles only the domain it uses.
 
 namespace Aniso_conformal {
+
+namespace internal {
+
+// The pipeline in `Domain`, with the caller's parameters read into values and its visitor behind a
+// handle (canonical_parameters.h): compiled once per domain and metric.
+template <typename Domain, typename AnisotropicMetric>
+Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                              const Remeshing_options& options, Visitor_handle& vis)
+{
+  const auto np = canonical_parameters(options, vis);
+  const std::size_t n = options.number_of_vertices;
+  if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
+  if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
+  if(!Domain::fits(surface))
+    throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
+                        surface.topology_description() + " (the " + domain_name(Domain::kind) + " domain takes " +
+                        Domain::topology() + ")");
+  Domain::check_number_of_vertices(surface, n);
+  result = Remeshing_result();
+  result.domain = Domain::kind;
+  result.input_vertices = surface.number_of_vertices();
+  result.input_faces = surface.number_of_faces();
+
+  // 1. metric, 2. edge lengths
+  Intrinsic_triangulation itri = metric_and_edge_lengths(surface, metric, n, np, vis, result);
+
+  // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
+  Stage_timer t3(vis, Stage::EMBEDDING);
+  const typename Domain::Embedding emb = Domain::embed(itri, np);
+  record_embedding(emb, result);
+  result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
+  const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
+  typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);
+  std::vector<typename Domain::Traits::Point> sites = traits.initial_sites(n, options.random_seed);
+  const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
+  const Remeshed_surface out = cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+  result.seconds[int(Stage::CVT)] += setup_seconds;
+  result.domain_diagnostics = Domain::diagnostics(emb, traits);
+
+  // 6. quality in the metric, orientation against the input, topology and distance to the input
+  measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);
+  return out;
+}
+
+} // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalMain
@@ -55,36 +102,9 @@ template <typename Domain, typename AnisotropicMetric, typename NamedParameters 
 Remeshed_surface remesh_in_domain(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                                   const NamedParameters& np = parameters::default_values())
 {
-  const std::size_t n = internal::number_of_vertices(np);
-  typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
-  if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
-  if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
-  if(!Domain::fits(surface))
-    throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
-                        surface.topology_description() + " (the " + domain_name(Domain::kind) + " domain takes " +
-                        Domain::topology() + ")");
-  Domain::check_number_of_vertices(surface, n);
-  result = Remeshing_result();
-  result.domain = Domain::kind;
-  result.input_vertices = surface.number_of_vertices();
-  result.input_faces = surface.number_of_faces();
-
-  // 1. metric, 2. edge lengths
-  Intrinsic_triangulation itri = internal::metric_and_edge_lengths(surface, metric, n, np, vis, result);
-
-  // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
-  internal::Stage_timer t3(vis, Stage::EMBEDDING);
-  const typename Domain::Embedding emb = Domain::embed(itri, np);
-  internal::record_embedding(emb, result);
-  result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
-  typename Domain::Traits traits = Domain::make_traits(itri, emb, internal::number_of_threads(np));
-  std::vector<typename Domain::Traits::Point> sites = traits.initial_sites(n, internal::random_seed(np));
-  const Remeshed_surface out = internal::cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
-  result.domain_diagnostics = Domain::diagnostics(emb, traits);
-
-  // 6. quality in the metric, orientation against the input, topology and distance to the input
-  internal::measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result);
-  return out;
+  typename internal::Visitor_reference<NamedParameters>::type visitor = internal::get_visitor(np);
+  internal::Visitor_handle handle(visitor);
+  return internal::run_pipeline<Domain>(surface, metric, result, internal::Remeshing_options::from(np), handle);
 }
 
 /*!

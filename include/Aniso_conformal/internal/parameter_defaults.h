@@ -28,6 +28,7 @@ constexpr unsigned max_flips_per_edge = 50;         // every intrinsic flip pass
 constexpr unsigned max_conformal_iterations = 100;  // Newton iterations (stage 3)
 constexpr double conformal_tolerance = 1e-9;        // radians, on the angle sums
 constexpr Parametric_domain parametric_domain = Parametric_domain::AUTOMATIC;
+constexpr Planar_boundary planar_boundary = Planar_boundary::KEEP_SHAPE;  // stage 3 on a disk
 } // namespace defaults
 
 #define ANISO_CONFORMAL_PARAMETER_GETTER(NAME, TAG, TYPE)                                                          \
@@ -46,6 +47,7 @@ ANISO_CONFORMAL_PARAMETER_GETTER(max_flips_per_edge, internal_np::max_flips_per_
 ANISO_CONFORMAL_PARAMETER_GETTER(max_conformal_iterations, internal_np::max_conformal_iterations, std::size_t)
 ANISO_CONFORMAL_PARAMETER_GETTER(conformal_tolerance, internal_np::conformal_tolerance, double)
 ANISO_CONFORMAL_PARAMETER_GETTER(parametric_domain, internal_np::parametric_domain, Parametric_domain)
+ANISO_CONFORMAL_PARAMETER_GETTER(planar_boundary, internal_np::planar_boundary, Planar_boundary)
 #undef ANISO_CONFORMAL_PARAMETER_GETTER
 
 // the number of output vertices: required, 0 when not given

@@ -6,10 +6,10 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/intrinsic/breadth_first_faces.h>
 
 #include <array>
 #include <cstddef>
-#include <deque>
 #include <string>
 #include <vector>
 
@@ -69,24 +69,18 @@ std::vector<std::array<Point, 3>> unfold_breadth_first(const Intrinsic_triangula
       (*placed)[std::size_t(v[0])] = (*placed)[std::size_t(v[1])] = 1;
     }
     place_third(first, 0);
-    done[std::size_t(first)] = 1;
   }
-  std::deque<int> queue(1, first);
-  while(!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    for(int k = 0; k < 3; ++k) {
-      const int h = 3 * f + k;
-      if(!may_cross(h)) continue;
-      const int t = itri.twin(h), g = Intrinsic_triangulation::face(t), j = t % 3;
-      if(done[std::size_t(g)]) continue;
-      done[std::size_t(g)] = 1;
-      auto& c = corners[std::size_t(g)];
-      c[std::size_t(j)] = corners[std::size_t(f)][std::size_t((k + 1) % 3)];  // tail(t) = head(h)
-      c[std::size_t((j + 1) % 3)] = corners[std::size_t(f)][std::size_t(k)];  // head(t) = tail(h)
-      place_third(g, j);
-      queue.push_back(g);
-    }
+  // each face across the edge by which the breadth-first search first reached it, in the order reached
+  const Face_breadth_first bfs = breadth_first_faces(itri, first, may_cross);
+  for(int g : bfs.order) {
+    done[std::size_t(g)] = 1;
+    const int h = bfs.via[std::size_t(g)];
+    if(h < 0) continue;  // the first face
+    const int f = Intrinsic_triangulation::face(h), k = h % 3, j = itri.twin(h) % 3;
+    auto& c = corners[std::size_t(g)];
+    c[std::size_t(j)] = corners[std::size_t(f)][std::size_t((k + 1) % 3)];  // tail(twin) = head(h)
+    c[std::size_t((j + 1) % 3)] = corners[std::size_t(f)][std::size_t(k)];  // head(twin) = tail(h)
+    place_third(g, j);
   }
   return corners;
 }

@@ -8,12 +8,12 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/conformal/sparse_cholesky.h>
 #include <Aniso_conformal/internal/intrinsic/flip_to_delaunay.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 
 #include <Eigen/Core>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
@@ -26,7 +26,8 @@
 // The discrete conformal solve, written once for every domain (DESIGN.md 3): per-vertex log scales u,
 // angle sum 2 pi at the free vertices, Newton's method on the convex energy of the vertex-scaling
 // geometry (Springborn, Schroeder and Pinkall 2008 for the Euclidean, Bobenko, Pinkall and Springborn
-// 2015 for the hyperbolic one), sparse Cholesky factorisation of its Hessian, a backtracking line search
+// 2015 for the hyperbolic one), sparse Cholesky factorisation of its Hessian (CHOLMOD or Eigen's LDLT,
+// sparse_cholesky.h), a backtracking line search
 // on the angle-sum error, and intrinsic Delaunay flips before every evaluation (Gillespie, Springborn
 // and Crane 2021), which keep every triangle valid during the solve. The geometry is a policy
 // (Euclidean_vertex_scaling, Hyperbolic_vertex_scaling) giving the face lengths at scales u, their
@@ -39,9 +40,16 @@ namespace internal {
 struct Conformal_solution {
   std::vector<double> u;       // log scale per vertex (the given start at the fixed vertices)
   std::size_t iterations = 0;  // Newton iterations
-  double residual = 0;         // max |2 pi - angle sum| over the free vertices
+  double residual = 0;         // max |target - angle sum| over the free vertices
   std::size_t degenerate = 0;  // triangles treated as flat at the end
   std::size_t flips = 0;       // intrinsic Delaunay flips
+  std::size_t factorisations = 0;         // numerical factorisations of the Hessian
+  std::size_t preconditioned_solves = 0;  // Newton systems solved by CG preconditioned with an earlier factor
+  std::size_t cg_iterations = 0;          // the iterations of those CG solves
+  std::size_t analyses = 0;               // symbolic analyses (CHOLMOD)
+  double analysis_seconds = 0, factorisation_seconds = 0, cg_seconds = 0;  // where the solve's time went
+  std::string backend;                    // the factorisation of the last system ("CHOLMOD", "Eigen SimplicialLDLT")
+  std::string fallback_reason;            // why CHOLMOD was abandoned for LDLT (empty if it was not)
 };
 
 // the bounds of the solve, from the named parameters
@@ -49,6 +57,7 @@ struct Newton_bounds {
   std::size_t max_iterations = defaults::max_conformal_iterations;
   double tolerance = defaults::conformal_tolerance;
   std::size_t flips_per_edge = defaults::max_flips_per_edge;
+  std::size_t cholmod_min_unknowns = 50000;  // smaller systems go to Eigen's LDLT (Sparse_spd_solver)
 
   template <typename NamedParameters>
   static Newton_bounds from(const NamedParameters& np)
@@ -63,19 +72,21 @@ struct Newton_bounds {
 
 /*
  * Solves for u with u fixed at the vertices where `fixed` is set (to their value in `u0`) and angle sum
- * 2 pi at the others, starting from `u0` (the initial guess at the free vertices). At least one vertex
+ * 2 pi at the others (or `(*target_angle_sums)[v]`, when given: a disk whose boundary angles are
+ * prescribed), starting from `u0` (the initial guess at the free vertices). At least one vertex
  * must be fixed in the Euclidean geometry (its energy is invariant under a constant shift of u); the
  * hyperbolic one has no gauge. Interior edges of `itri` are flipped by the geometry's flip rule before
  * every evaluation; no flip touches the star of a vertex marked in `keep_star`. `who` names the caller in
  * messages. Bounded: `max_iterations` Newton iterations, 40 halvings per line search, the flip passes by
  * `flips_per_edge`; Convergence_failure with the residual reached when a bound is hit (Delaunay flips
  * terminate in exact arithmetic, so hitting theirs means rounding made them cycle) or the factorisation
- * fails.
+ * fails (CHOLMOD and then Eigen's LDLT: the message gives both reasons).
  */
 template <typename Geometry, typename Visitor>
 Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const Geometry& geometry, const std::vector<char>& fixed,
                                           std::vector<double> u0, const Newton_bounds& bounds, Visitor& vis, const std::string& who,
-                                          const std::vector<char>* keep_star = nullptr)
+                                          const std::vector<char>* keep_star = nullptr,
+                                          const std::vector<double>* target_angle_sums = nullptr)
 {
   const double two_pi = 2 * 3.14159265358979323846;
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
@@ -83,6 +94,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
   int n = 0;
   for(int v = 0; v < nv; ++v)
     if(!fixed[std::size_t(v)]) index[std::size_t(v)] = n++;
+  auto target = [&](int v) { return target_angle_sums ? (*target_angle_sums)[std::size_t(v)] : two_pi; };
 
   Conformal_solution sol;
   sol.u = std::move(u0);
@@ -103,6 +115,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
     if(pass.flips > 0) connectivity_changed = true;
     std::fill(angle_sum.begin(), angle_sum.end(), 0.0);
     triplets.clear();
+    if(with_hessian) triplets.reserve(12 * std::size_t(nf));  // at most 12 entries per face
     degenerate = 0;
     for(int f = 0; f < nf; ++f) {
       const auto& c = itri.face_vertices(std::size_t(f));
@@ -115,36 +128,36 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
     }
     double r = 0;
     for(int v = 0; v < nv; ++v)
-      if(index[std::size_t(v)] >= 0) r = std::max(r, std::abs(two_pi - angle_sum[std::size_t(v)]));
+      if(index[std::size_t(v)] >= 0) r = std::max(r, std::abs(target(v) - angle_sum[std::size_t(v)]));
     return r;
   };
 
   Eigen::SparseMatrix<double> H(n, n);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  bool analysed = false;
+  Sparse_spd_solver solver;
+  solver.cholmod_min_unknowns = bounds.cholmod_min_unknowns;
   std::size_t degenerate = 0;
   residual = evaluate(sol.u, true, degenerate);
   for(; it < bounds.max_iterations && residual > bounds.tolerance; ++it) {
     H.setFromTriplets(triplets.begin(), triplets.end());
+    std::vector<Eigen::Triplet<double>>().swap(triplets);  // ~400 bytes per vertex: not kept through the factorisation
     if constexpr(Geometry::symmetrize_hessian) {  // symmetric up to rounding: LDLT must see one matrix
       Eigen::SparseMatrix<double> Ht = H.transpose();
       H = 0.5 * (H + Ht);
     }
     // a tiny diagonal shift keeps the factorisation definite where degenerate triangles zero a row
     for(int i = 0; i < n; ++i) H.coeffRef(i, i) += 1e-12;
-    if(!analysed || connectivity_changed) {  // flips change the sparsity pattern
-      solver.analyzePattern(H);
-      analysed = true;
-      connectivity_changed = false;
-    }
-    solver.factorize(H);
-    if(solver.info() != Eigen::Success)
-      throw Convergence_failure(who + ": the sparse Cholesky factorisation failed at Newton iteration " + std::to_string(it),
-                                residual);
+    H.makeCompressed();
     Eigen::VectorXd g(n);
     for(int v = 0; v < nv; ++v)
-      if(index[std::size_t(v)] >= 0) g[index[std::size_t(v)]] = angle_sum[std::size_t(v)] - two_pi;
-    const Eigen::VectorXd du = solver.solve(g);
+      if(index[std::size_t(v)] >= 0) g[index[std::size_t(v)]] = angle_sum[std::size_t(v)] - target(v);
+    Eigen::VectorXd du;
+    std::string failure;
+    // flips change the sparsity pattern: the factorisation is analysed again (with the first ordering)
+    if(!solver.solve(H, g, connectivity_changed, du, failure))
+      throw Convergence_failure(who + ": the sparse Cholesky factorisation failed at Newton iteration " + std::to_string(it) + " (" +
+                                    failure + ")",
+                                residual);
+    connectivity_changed = false;
     // backtracking on the residual: the energy is convex, so a full step is nearly always taken
     std::vector<double> trial(static_cast<std::size_t>(nv));
     double step = 1.0;
@@ -162,6 +175,15 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
   sol.iterations = it;
   sol.residual = residual;
   sol.degenerate = degenerate;
+  sol.factorisations = solver.factorisations;
+  sol.preconditioned_solves = solver.preconditioned_solves;
+  sol.cg_iterations = solver.cg_iterations_total;
+  sol.analyses = solver.factor().analyses;
+  sol.analysis_seconds = solver.factor().analysis_seconds;
+  sol.factorisation_seconds = solver.factor().factorisation_seconds;
+  sol.cg_seconds = solver.cg_seconds;
+  sol.backend = solver.factor().backend();
+  sol.fallback_reason = solver.factor().fallback_reason;
   if(!(residual <= bounds.tolerance))
     throw Convergence_failure(who + ": Newton's method reached angle-sum error " + std::to_string(residual) + " after " +
                                   std::to_string(it) + " iterations (tolerance " + std::to_string(bounds.tolerance) + ")",

@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/intrinsic/breadth_first_faces.h>
 
 #include <algorithm>
 #include <deque>
@@ -34,28 +35,6 @@ struct Tree_cotree {
   int root_face = 0;               // the face C starts from
 };
 
-// breadth-first distances between faces across the halfedges `may_cross` allows, from `start`
-template <typename MayCross>
-std::vector<int> face_distances(const Intrinsic_triangulation& itri, int start, MayCross may_cross)
-{
-  std::vector<int> d(itri.number_of_faces(), -1);
-  std::deque<int> queue(1, start);
-  d[std::size_t(start)] = 0;
-  while(!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    for(int k = 0; k < 3; ++k) {
-      const int h = 3 * f + k;
-      if(!may_cross(h)) continue;
-      const int g = Intrinsic_triangulation::face(itri.twin(h));
-      if(d[std::size_t(g)] >= 0) continue;
-      d[std::size_t(g)] = d[std::size_t(f)] + 1;
-      queue.push_back(g);
-    }
-  }
-  return d;
-}
-
 inline Tree_cotree tree_cotree(const Intrinsic_triangulation& itri)
 {
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces()), nh = int(itri.number_of_halfedges());
@@ -67,31 +46,20 @@ inline Tree_cotree tree_cotree(const Intrinsic_triangulation& itri)
   tc.in_cotree.assign(std::size_t(nh), 0);
   auto any = [](int) { return true; };
   // the central face: two sweeps find a longest path a - b; its middle face is central
-  const std::vector<int> d0 = face_distances(itri, 0, any);
+  const std::vector<int> d0 = breadth_first_faces(itri, 0, any).distance;
   if(std::find(d0.begin(), d0.end(), -1) != d0.end()) throw Invalid_input("tree_cotree(): the triangulation is not connected");
   const int a = int(std::max_element(d0.begin(), d0.end()) - d0.begin());
-  const std::vector<int> da = face_distances(itri, a, any);
+  const std::vector<int> da = breadth_first_faces(itri, a, any).distance;
   const int b = int(std::max_element(da.begin(), da.end()) - da.begin());
-  const std::vector<int> db = face_distances(itri, b, any);
+  const std::vector<int> db = breadth_first_faces(itri, b, any).distance;
   int centre = a;
   for(int f = 0; f < nf; ++f)
     if(std::max(da[std::size_t(f)], db[std::size_t(f)]) < std::max(da[std::size_t(centre)], db[std::size_t(centre)])) centre = f;
   tc.root_face = centre;
   // C: breadth-first from the central face, across any edge
-  std::vector<char> reached(std::size_t(nf), 0);
-  std::deque<int> queue(1, centre);
-  reached[std::size_t(centre)] = 1;
-  while(!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    for(int k = 0; k < 3; ++k) {
-      const int h = 3 * f + k, t = itri.twin(h), g = Intrinsic_triangulation::face(t);
-      if(reached[std::size_t(g)]) continue;
-      reached[std::size_t(g)] = 1;
-      tc.in_cotree[std::size_t(h)] = tc.in_cotree[std::size_t(t)] = 1;
-      queue.push_back(g);
-    }
-  }
+  const Face_breadth_first c = breadth_first_faces(itri, centre, any);
+  for(int g : c.order)
+    if(c.via[std::size_t(g)] >= 0) tc.in_cotree[std::size_t(c.via[std::size_t(g)])] = tc.in_cotree[std::size_t(itri.twin(c.via[std::size_t(g)]))] = 1;
   // T: breadth-first from vertex 0 through the edges C does not cross (they form a connected graph)
   std::vector<char> seen(std::size_t(nv), 0);
   std::deque<int> vqueue(1, 0);

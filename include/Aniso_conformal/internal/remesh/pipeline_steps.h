@@ -12,6 +12,7 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/parallel_for.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/mesh_quality.h>
@@ -116,7 +117,7 @@ Remeshed_surface cvt_and_dual_mesh(const Input_surface& surface, const Intrinsic
   result.cvt = weighted_centroidal_Voronoi_tessellation(domain, sites, domain.number_of_fixed_sites(), np);
   result.seconds[int(Stage::CVT)] = t4.stop(vis);
   Stage_timer t5(vis, Stage::DUAL_MESH);
-  Remeshed_surface out = extract_dual_mesh(surface, itri, domain, sites);
+  Remeshed_surface out = extract_dual_mesh(surface, itri, domain, sites, number_of_threads(np));
   result.seconds[int(Stage::DUAL_MESH)] = t5.stop(vis);
   return out;
 }
@@ -138,27 +139,48 @@ inline Input_surface check_output_topology(const Remeshed_surface& out, const In
   }
 }
 
-// symmetric Hausdorff distance, sampled (see Remeshing_result::hausdorff_distance)
-inline double hausdorff_distance(const Input_surface& input, const Input_surface& output)
+// Symmetric Hausdorff distance, sampled (see Remeshing_result::hausdorff_distance): every input vertex
+// against the output, and each output triangle's corners, edge midpoints and centroid against the input,
+// through the AABB trees of both surfaces (Input_surface::project()); n log m, on `threads` threads. The
+// maximum does not depend on the order, so neither does the result.
+inline double hausdorff_distance(const Input_surface& input, const Input_surface& output, unsigned threads = 0)
 {
-  double d = 0;
-  for(const Eigen::Vector3d& p : input.points()) d = std::max(d, (output.project(p).position - p).norm());
+  // build both trees here: Input_surface builds its tree on the first projection, which must not race
+  output.project(input.points().front());
+  input.project(output.points().front());
+  auto maximum = [threads](std::size_t n, const auto& distance) {
+    std::vector<double> block_max(resolve_thread_count(threads), 0.0);
+    parallel_blocks(n, threads, [&](std::size_t begin, std::size_t end, std::size_t t) {
+      double d = 0;
+      for(std::size_t i = begin; i < end; ++i) d = std::max(d, distance(i));
+      block_max[t] = d;
+    });
+    return *std::max_element(block_max.begin(), block_max.end());
+  };
   const auto& P = output.points();
-  for(const auto& f : output.faces()) {
+  const double to_output = maximum(input.number_of_vertices(), [&](std::size_t i) {
+    const Eigen::Vector3d& p = input.points()[i];
+    return (output.project(p).position - p).norm();
+  });
+  const double to_input = maximum(output.number_of_faces(), [&](std::size_t i) {
+    const auto& f = output.faces()[i];
     const Eigen::Vector3d a = P[f[0]], b = P[f[1]], c = P[f[2]];
+    double d = 0;
     for(const Eigen::Vector3d& q : {a, Eigen::Vector3d((a + b) / 2), Eigen::Vector3d((b + c) / 2), Eigen::Vector3d((c + a) / 2),
                                     Eigen::Vector3d((a + b + c) / 3)})
       d = std::max(d, (input.project(q).position - q).norm());
-  }
-  return d;
+    return d;
+  });
+  return std::max(to_output, to_input);
 }
 
 // the output triangles whose normal disagrees with the input's normals at their corners (the +z axis
 // for a planar input)
-inline std::size_t count_inverted_triangles(const Input_surface& surface, const Remeshed_surface& out)
+inline std::size_t count_inverted_triangles(const Input_surface& surface, const Remeshed_surface& out, unsigned threads = 0)
 {
-  std::size_t inverted = 0;
-  for(const auto& f : out.faces) {
+  std::vector<char> inverted(out.faces.size(), 0);
+  parallel_for(out.faces.size(), threads, [&](std::size_t i) {
+    const auto& f = out.faces[i];
     const Eigen::Vector3d nf = (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]);
     Eigen::Vector3d ref = Eigen::Vector3d::Zero();
     for(int k = 0; k < 3; ++k) {
@@ -166,28 +188,29 @@ inline std::size_t count_inverted_triangles(const Input_surface& surface, const 
       for(int j = 0; j < 3; ++j) ref += sp.barycentric[j] * surface.vertex_normals()[sp.vertices[j]];
     }
     if(surface.is_planar()) ref = Eigen::Vector3d(0, 0, 1);
-    if(!(nf.dot(ref) > 0)) ++inverted;
-  }
-  return inverted;
+    inverted[i] = !(nf.dot(ref) > 0);
+  });
+  return std::size_t(std::count(inverted.begin(), inverted.end(), 1));
 }
 
 // Stage 6: quality in the metric, then the checks (no inverted triangle, whose message ends with the
-// domain's `hint`; the input's topology) and the Hausdorff distance to the input.
+// domain's `hint`; the input's topology) and the Hausdorff distance to the input, on `threads` threads.
 template <typename AnisotropicMetric, typename Visitor>
 void measure_and_check_output(const Input_surface& surface, const AnisotropicMetric& metric, const Remeshed_surface& out,
-                              const char* hint, Visitor& vis, Remeshing_result& result)
+                              const char* hint, Visitor& vis, Remeshing_result& result, unsigned threads = 0)
 {
   Stage_timer t6(vis, Stage::QUALITY);
   std::vector<Eigen::Matrix3d> Q(out.points.size());
+  // serial: a user's metric model need not be safe for concurrent calls (and this loop is short)
   for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = symmetric_sqrt(metric.tensor(out.surface_points[i]));
-  result.quality = compute_mesh_quality(out.points, out.faces, Q);
-  result.inverted_triangles = count_inverted_triangles(surface, out);
+  result.quality = compute_mesh_quality(out.points, out.faces, Q, threads);
+  result.inverted_triangles = count_inverted_triangles(surface, out, threads);
   if(result.inverted_triangles > 0)
     throw Convergence_failure("remesh(): the output has " + std::to_string(result.inverted_triangles) +
                                   " inverted or degenerate triangles (G_min " + std::to_string(result.quality.G_min) + "): " + hint,
                               double(result.inverted_triangles));
   const Input_surface checked = check_output_topology(out, surface);
-  result.hausdorff_distance = hausdorff_distance(surface, checked);
+  result.hausdorff_distance = hausdorff_distance(surface, checked, threads);
   result.hausdorff_distance_relative = result.hausdorff_distance / surface.bounding_box_diagonal();
   result.seconds[int(Stage::QUALITY)] = t6.stop(vis);
 }
