@@ -160,6 +160,24 @@ BOOST_AUTO_TEST_CASE(quads_and_polygons_are_triangulated)
   const Polygons cq0 = cq;
   BOOST_TEST(contains(message_of([&] { AC::IO::repair_polygon_soup(c, cq); }), "face 1 (4 vertices) cannot be triangulated"));
   BOOST_TEST((cq == cq0));  // unchanged on failure
+
+  // a polygon that crosses itself seen along its normal (a pentagram over a regular pentagon's corners):
+  // CGAL 5.5's triangulate_face() crashes or returns a broken mesh on it, so it is refused first
+  Points star;
+  for(int k = 0; k < 5; ++k) star.emplace_back(std::cos(2 * M_PI * k / 5), std::sin(2 * M_PI * k / 5), 0.0);
+  Polygons sq = {{0, 2, 4, 1, 3}};
+  BOOST_TEST(contains(message_of([&] { AC::IO::repair_polygon_soup(star, sq); }), "face 0 (5 vertices) cannot be triangulated"));
+  // a concave (simple) pentagon is triangulated: 3 triangles covering its area
+  Points arrow = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {1, 0.5, 0}, {0, 2, 0}};
+  Polygons aq = {{0, 1, 2, 3, 4}};
+  r = AC::IO::repair_polygon_soup(arrow, aq);
+  BOOST_TEST(aq.size() == 3u);
+  BOOST_TEST(valid_surface(arrow, aq));
+  BOOST_TEST(test::count_mesh(arrow, [&] {
+               std::vector<std::array<std::size_t, 3>> f;
+               for(const auto& t : aq) f.push_back({{t[0], t[1], t[2]}});
+               return f;
+             }()).planar_area == 2.5, boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_CASE(the_quad_patch_file_is_triangulated_on_reading)

@@ -308,7 +308,7 @@ inline void triangulate(Working_soup& w)
     const auto f = face_mesh.add_face(corners);
     // A polygon of 5 or more corners is triangulated by a constrained Delaunay triangulation of its
     // projection along its normal; in CGAL 5.5 that crashes, or returns a broken mesh, when the projection
-    // is not a simple polygon (found by a random soup test, test_repair.cpp): such a polygon is refused
+    // is not a simple polygon (a pentagram, test_repair.cpp `quads_and_polygons_are_triangulated`): such a polygon is refused
     // first, and the result is checked before it is read
     const bool simple = w.polys[p].size() < 5 || [&] {
       const Repair_kernel::Vector_3 normal = CGAL::Polygon_mesh_processing::compute_face_normal(f, face_mesh);
