@@ -29,7 +29,7 @@ struct Repair_options {
   /// points that belong to no polygon are dropped (`remove_isolated_points_in_polygon_soup()`)
   bool drop_isolated_points = true;
   /// faces are oriented consistently (`orient_polygon_soup()`; an open surface keeps the orientation of
-  /// the majority of its faces), a closed surface outward (`orient_to_bound_a_volume()`), and a planar
+  /// the majority of its faces), a closed surface outward (`is_outward_oriented()`), and a planar
   /// clockwise input is handed to the remesher counter-clockwise (`restore_input_orientation()` turns
   /// the output back)
   bool orient = true;

@@ -11,6 +11,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -141,18 +142,20 @@ inline Repair_report repair_polygon_soup(std::vector<Eigen::Vector3d>& points, s
  * 2. **drop isolated points**: points that belong to no polygon are dropped
  *    (`remove_isolated_points_in_polygon_soup()`);
  * 3. **triangulate**: each polygon of 4 or more vertices is split into triangles (`triangulate_face()`:
- *    a quadrangle along the diagonal that keeps the two triangles' normals closest, a larger polygon
- *    by a constrained Delaunay triangulation of its projection along its normal; no vertex is added);
+ *    a quadrangle along the diagonal that keeps the two triangles' normals closest, a larger planar
+ *    polygon by a constrained Delaunay triangulation of its projection along its normal, a larger
+ *    non-planar one by hole filling on its 3D outline (`triangulate_hole_polyline()`, Liepa 2003:
+ *    minimal dihedral angles, then area); no vertex is added);
  * 4. **orient**: the faces are oriented consistently (`orient_polygon_soup()`); an open surface keeps the
- *    orientation of the majority of its faces, a closed one is oriented outward
- *    (`orient_to_bound_a_volume()`); an input in the plane z = 0 that is clockwise seen from +z is
- *    reversed (`Repair_report::planar_clockwise`: the planar remesher works counter-clockwise, and
+ *    orientation of the majority of its faces, a closed one (one component, free of self-intersections)
+ *    is oriented outward (`is_outward_oriented()`, then all faces reversed if not); an input in the
+ *    plane z = 0 that is clockwise seen from +z is reversed (`Repair_report::planar_clockwise`: the planar remesher works counter-clockwise, and
  *    `restore_input_orientation()` turns its output back).
  *
  * What is not a repair is refused, with the index the input gives it (`Invalid_input`): an index out of
  * range, a non-finite coordinate, a polygon of fewer than 3 vertices or with a repeated vertex (welding
- * may make one: the message says so), a polygon that cannot be triangulated (its corners collinear, or
- * it folds over itself seen along its normal), and, when orienting, a non-manifold edge or vertex
+ * may make one: the message says so), a polygon that cannot be triangulated (its corners collinear, a
+ * planar one that crosses or touches itself, or hole filling fails), and, when orienting, a non-manifold edge or vertex
  * (welding may make one too: the message says which input points it joined) and a non-orientable
  * surface. Several connected components are left for `Input_surface` to refuse.
  *
@@ -306,18 +309,37 @@ inline void triangulate(Working_soup& w)
     std::vector<CGAL::Surface_mesh<Repair_point>::Vertex_index> corners;
     for(std::size_t v : w.polys[p]) corners.push_back(face_mesh.add_vertex(w.pts[v]));
     const auto f = face_mesh.add_face(corners);
-    // A polygon of 5 or more corners is triangulated by a constrained Delaunay triangulation of its
-    // projection along its normal; in CGAL 5.5 that crashes, or returns a broken mesh, when the projection
-    // is not a simple polygon (a pentagram, test_repair.cpp `quads_and_polygons_are_triangulated`): such a polygon is refused
-    // first, and the result is checked before it is read
-    const bool simple = w.polys[p].size() < 5 || [&] {
+    // A quadrangle is split along the diagonal that keeps the two triangles' normals closest. A planar
+    // polygon of 5 or more corners is triangulated by a constrained Delaunay triangulation of its
+    // projection; in CGAL 5.5 that crashes, or returns a broken mesh, when the projection is not a simple
+    // polygon, or has two corners at one point (which is_simple_2() lets through): such a polygon is
+    // refused first. A non-planar one is triangulated by hole filling (`triangulate_hole_polyline()`, on
+    // the 3D polyline): projected along a normal with irrational components, the triangulation's inexact
+    // predicates can contradict each other and break its preconditions (both found by random soups, see
+    // test_repair.cpp). The result is checked before it is read.
+    std::vector<Repair_point> xyz;
+    for(std::size_t v : w.polys[p]) xyz.push_back(w.pts[v]);
+    bool planar = true, simple = true;
+    if(xyz.size() >= 5) {
+      std::size_t b = 1, c = 2;
+      while(c < xyz.size() && CGAL::collinear(xyz[0], xyz[b], xyz[c])) ++c;
+      for(std::size_t k = 1; planar && c < xyz.size() && k < xyz.size(); ++k)
+        planar = CGAL::coplanar(xyz[0], xyz[b], xyz[c], xyz[k]);
       const Repair_kernel::Vector_3 normal = CGAL::Polygon_mesh_processing::compute_face_normal(f, face_mesh);
-      if(normal == CGAL::NULL_VECTOR) return false;
-      std::vector<Repair_point> xyz;
-      for(std::size_t v : w.polys[p]) xyz.push_back(w.pts[v]);
-      return CGAL::is_simple_2(xyz.begin(), xyz.end(), CGAL::Projection_traits_3<Repair_kernel>(normal));
-    }();
-    if(f == face_mesh.null_face() || !simple || !CGAL::Polygon_mesh_processing::triangulate_face(f, face_mesh) ||
+      if(c == xyz.size() || normal == CGAL::NULL_VECTOR) {
+        simple = false;  // collinear corners
+      } else if(planar) {
+        const CGAL::Projection_traits_3<Repair_kernel> projection(normal);
+        std::vector<Repair_point> sorted = xyz;
+        std::sort(sorted.begin(), sorted.end(), projection.less_xy_2_object());
+        for(std::size_t k = 1; simple && k < sorted.size(); ++k)
+          simple = !(projection.compare_x_2_object()(sorted[k - 1], sorted[k]) == CGAL::EQUAL &&
+                     projection.compare_y_2_object()(sorted[k - 1], sorted[k]) == CGAL::EQUAL);
+        simple = simple && CGAL::is_simple_2(xyz.begin(), xyz.end(), projection);
+      }
+    }
+    if(f == face_mesh.null_face() || !simple ||
+       !CGAL::Polygon_mesh_processing::triangulate_face(f, face_mesh, CGAL::parameters::use_delaunay_triangulation(planar)) ||
        !CGAL::is_valid_polygon_mesh(face_mesh) || !CGAL::is_triangle_mesh(face_mesh) ||
        face_mesh.number_of_faces() + 2 != w.polys[p].size())
       throw Invalid_input("face " + std::to_string(w.from[p]) + " (" + std::to_string(w.polys[p].size()) +
@@ -375,15 +397,20 @@ inline void orient_consistently(Working_soup& w)
   // an edge still run twice in one direction, or a point CGAL had to copy: no consistent orientation exists
   const std::string not_orientable = "the surface is not orientable (like a Moebius band)";
   const std::string end = std::string(r.points_welded > 0 ? welded_note : "") + "; it cannot be remeshed";
-  std::map<std::pair<std::size_t, std::size_t>, std::size_t> directed;
+  std::vector<std::array<std::size_t, 3>> directed;  // (from, to, polygon), sorted: a repeat is adjacent
   for(std::size_t p = 0; p < w.polys.size(); ++p)
     for(std::size_t k = 0; k < w.polys[p].size(); ++k) {
-      const auto [it, fresh] = directed.emplace(std::make_pair(w.polys[p][k], w.polys[p][(k + 1) % w.polys[p].size()]), p);
-      if(!fresh || w.polys[p][k] >= w.pts.size())
-        refuse(not_orientable + ": face " + std::to_string(w.from[p]) + " cannot be oriented consistently with its neighbours" +
-                 (fresh ? "" : " (face " + std::to_string(w.from[it->second]) + ")") + end,
+      if(w.polys[p][k] >= w.pts.size())
+        refuse(not_orientable + ": face " + std::to_string(w.from[p]) + " cannot be oriented consistently with its neighbours" + end,
                r.points_welded > 0);
+      directed.push_back({{w.polys[p][k], w.polys[p][(k + 1) % w.polys[p].size()], p}});
     }
+  std::sort(directed.begin(), directed.end());
+  for(std::size_t i = 1; i < directed.size(); ++i)
+    if(directed[i][0] == directed[i - 1][0] && directed[i][1] == directed[i - 1][1])
+      refuse(not_orientable + ": face " + std::to_string(w.from[directed[i][2]]) +
+               " cannot be oriented consistently with its neighbours (face " + std::to_string(w.from[directed[i - 1][2]]) + ")" + end,
+             r.points_welded > 0);
   if(oriented_points.size() != w.pts.size()) refuse(not_orientable + end, r.points_welded > 0);
   // CGAL reverses a polygon end to end: start each from its first vertex before again; an open surface
   // keeps the orientation of most of its faces
@@ -397,37 +424,33 @@ inline void orient_consistently(Working_soup& w)
   }
 }
 
-// 4b. a closed surface points outward (CGAL's volume test wants a valid closed triangle mesh: a soup that
-// Input_surface refuses is left for the caller's validation to name its fault)
+// 4b. a closed surface points outward (CGAL's test wants one valid closed triangle mesh without
+// self-intersections: a soup that is not one is left for the caller's validation to name its fault, and
+// several components are refused there)
 inline void orient_outward_if_closed(Working_soup& w)
 {
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  typedef CGAL::Surface_mesh<Repair_point> Mesh;
   if(!std::all_of(w.polys.begin(), w.polys.end(), [](const std::vector<std::size_t>& p) { return p.size() == 3; })) return;
-  std::vector<Eigen::Vector3d> xyz;
-  for(const Repair_point& p : w.pts) xyz.emplace_back(p.x(), p.y(), p.z());
-  std::vector<Input_surface::Face> faces;
-  for(const auto& p : w.polys) faces.push_back({{p[0], p[1], p[2]}});
+  // orient_consistently() has refused what is not a polygon mesh (an edge run twice one way, a
+  // non-manifold edge or vertex), so is_polygon_soup_a_polygon_mesh() (0.7 s for 250k points) is not
+  // needed; the mesh built is checked instead
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(w.pts, w.polys, mesh);
+  if(mesh.is_empty() || !CGAL::is_closed(mesh) || !CGAL::is_valid_polygon_mesh(mesh)) return;
+  Mesh::Property_map<Mesh::Face_index, std::size_t> component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:c", 0).first;
+  if(PMP::connected_components(mesh, component) != 1) return;
+  // the orientation of the faces at the topmost vertex, which is that of the whole consistently oriented
+  // component (O(n); orient_to_bound_a_volume() would also sort nested components, which cannot occur here)
   try {
-    if(!Input_surface(std::move(xyz), std::move(faces)).boundary_loops().empty()) return;
-  } catch(const Invalid_input&) {
-    return;
-  }
-  CGAL::Surface_mesh<Repair_point> mesh;
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(w.pts, w.polys, mesh);
-  try {
-    CGAL::Polygon_mesh_processing::orient_to_bound_a_volume(mesh);
+    if(PMP::is_outward_oriented(mesh)) return;
   } catch(const CGAL::Failure_exception&) {
-    // with CGAL's checks on (no NDEBUG): faces folded onto each other at the top of a self-intersecting
-    // surface, which bounds no volume; it is left as it is
+    // with CGAL's checks on (no NDEBUG): faces folded flat onto each other at the top vertex, a surface
+    // that bounds no volume (its degenerate faces are refused by the validation); it is left as it is
     return;
   }
-  for(auto f : mesh.faces()) {  // faces in soup order; a reversed face is reversed in the soup
-    std::vector<std::size_t> now;
-    for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) now.push_back(std::size_t(v));
-    if(reversed(now, w.polys[std::size_t(f)])) {
-      reverse_polygon(w.polys[std::size_t(f)]);
-      w.r.reversed_to_outward = true;
-    }
-  }
+  for(auto& poly : w.polys) reverse_polygon(poly);
+  w.r.reversed_to_outward = true;
 }
 
 // 4c. the plane z = 0, clockwise seen from +z (the signed area of the whole surface): counter-clockwise
