@@ -14,6 +14,8 @@
 #include <Aniso_conformal/Paper_metrics.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/IO/read_metric_file.h>
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/remesh_in_domain.h>
@@ -26,6 +28,7 @@
 #include "domain_concept_checks.h"
 #include "mesh_checks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -217,6 +220,78 @@ BOOST_AUTO_TEST_CASE(disk_surface_keeps_boundary_and_corners)
   // every vertex is on the surface
   for(const auto& p : out.points) BOOST_TEST(std::abs(p.z() - 0.3 * (p.x() * p.x() - p.y() * p.y())) < 2e-3);
   BOOST_TEST(r.quality.G_avg >= 0.85);
+}
+
+BOOST_AUTO_TEST_CASE(disks_whose_paper_layout_overlaps_remesh)
+{
+  // Before: "dual mesh: the boundary polygon of the sites intersects itself". With u = 0 on the boundary
+  // the swirl bends the L's boundary across itself, and the slit's two sides touch; the default
+  // (Planar_boundary::AUTOMATIC) then lays out the input's outline (made convex for the slit).
+  const std::string cases = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/";
+  struct Case {
+    std::string mesh, metric;
+    std::size_t n;
+    bool convex;
+  };
+  for(const Case& c : {Case{"lshape8.off", "lshape8_swirl3.metric", 300, false}, Case{"annulus_slit_ccw.off", "", 150, true}}) {
+    BOOST_TEST_CONTEXT(c.mesh)
+    {
+      const AC::Input_surface s = AC::IO::read_triangle_mesh(cases + c.mesh);
+      AC::Remeshing_result r;
+      AC::Remeshed_surface out;
+      if(c.metric.empty())
+        out = remesh_plane(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(c.n));
+      else
+        out = remesh_plane(s, AC::IO::read_metric_file(cases + c.metric, s.number_of_vertices()), r,
+                           AC::parameters::number_of_vertices(c.n));
+      BOOST_TEST(out.points.size() == c.n);
+      BOOST_TEST(r.inverted_triangles == 0u);
+      BOOST_TEST(r.quality.G_avg > 0.85);
+      BOOST_TEST(r.quality.theta_min > 15.0);
+      const test::Mesh_counts m = test::count_mesh(out.points, out.faces);
+      BOOST_TEST(m.euler == 1);  // still a disk
+      BOOST_TEST(r.domain_diagnostics.value("boundary_keeps_shape") == 1.0);
+      BOOST_TEST(r.domain_diagnostics.value("convex_boundary") == (c.convex ? 1.0 : 0.0));
+      // every boundary vertex of the output lies on the input's boundary (its edges' segments)
+      std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+      for(const auto& loop : s.boundary_loops())
+        for(std::size_t i = 0; i < loop.size(); ++i)
+          segments.emplace_back(s.points()[loop[i]], s.points()[loop[(i + 1) % loop.size()]]);
+      for(std::size_t v : m.boundary_vertices) {
+        double d = std::numeric_limits<double>::infinity();
+        for(const auto& e : segments) {
+          const Eigen::Vector3d ab = e.second - e.first;
+          const double t = std::clamp((out.points[v] - e.first).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+          d = std::min(d, (out.points[v] - (e.first + t * ab)).norm());
+        }
+        BOOST_TEST(d < 1e-9);
+      }
+      // asking for the paper's map alone is refused, with a typed exception naming the alternative
+      if(c.convex) {
+        bool refused = false;
+        try {
+          remesh_plane(s, AC::Uniform_metric(), r,
+                       AC::parameters::number_of_vertices(c.n).planar_boundary(AC::Planar_boundary::KEEP_LENGTHS));
+        } catch(const AC::Remeshing_failure& e) {
+          refused = std::string(e.what()).find("KEEP_SHAPE") != std::string::npos;
+        }
+        BOOST_TEST(refused);
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(planar_boundary_reaches_the_embedding)
+{
+  // the named parameter must survive remesh_in_domain()'s canonical parameters: the same square with
+  // the outline kept, then with the lengths kept
+  AC::Remeshing_result r;
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const auto sq = AC::make_square_background(metric, 400);
+  remesh_plane(sq, metric, r, AC::parameters::number_of_vertices(std::size_t(150)).planar_boundary(AC::Planar_boundary::KEEP_SHAPE));
+  BOOST_TEST(r.domain_diagnostics.value("boundary_keeps_shape") == 1.0);
+  remesh_plane(sq, metric, r, AC::parameters::number_of_vertices(std::size_t(150)));
+  BOOST_TEST(r.domain_diagnostics.value("boundary_keeps_shape") == 0.0);  // AUTOMATIC: u = 0 is embedded here
 }
 
 BOOST_AUTO_TEST_CASE(errors_name_the_problem)

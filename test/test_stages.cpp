@@ -452,6 +452,77 @@ BOOST_AUTO_TEST_CASE(embedding_of_a_curved_patch_flattens_it_conformally)
   BOOST_TEST(threw);
 }
 
+BOOST_AUTO_TEST_CASE(embedding_keeps_the_outline_when_asked_or_when_the_lengths_cannot)
+{
+  // an L-shaped plate (z = 0): the grid over [0,2]^2 without its upper-right quadrant
+  const int g = 8;  // cells per unit
+  std::vector<Eigen::Vector3d> pts;
+  std::vector<int> id((2 * g + 1) * (2 * g + 1), -1);
+  auto inside = [&](int i, int j) { return i <= g || j <= g; };
+  for(int j = 0; j <= 2 * g; ++j)
+    for(int i = 0; i <= 2 * g; ++i)
+      if(inside(i, j)) {
+        id[std::size_t(j * (2 * g + 1) + i)] = int(pts.size());
+        pts.emplace_back(double(i) / g, double(j) / g, 0);
+      }
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j < 2 * g; ++j)
+    for(int i = 0; i < 2 * g; ++i)
+      if(i < g || j < g) {
+        auto v = [&](int a, int b) { return std::size_t(id[std::size_t(b * (2 * g + 1) + a)]); };
+        faces.push_back({{v(i, j), v(i + 1, j), v(i + 1, j + 1)}});
+        faces.push_back({{v(i, j), v(i + 1, j + 1), v(i, j + 1)}});
+      }
+  const AC::Input_surface L(pts, faces);
+  // a strong anisotropic metric, so that keeping the lengths bends the boundary
+  const auto metric = AC::make_analytic_metric_2([](double x, double) {
+    const double a = 1 + 8 * x * x;
+    return Eigen::Matrix2d((Eigen::Matrix2d() << a, 0, 0, 1).finished());
+  });
+  AC::Intrinsic_triangulation t(L, AC::compute_metric_square_roots(L, metric));
+  AC::adjust_edge_lengths(t, L);
+  AC::Intrinsic_triangulation t_lengths = t;
+  const AC::Planar_embedding emb =
+      AC::conformal_embedding(t, AC::parameters::planar_boundary(AC::Planar_boundary::KEEP_SHAPE).conformal_tolerance(1e-10));
+  BOOST_TEST((emb.boundary == AC::Planar_boundary::KEEP_SHAPE));
+  BOOST_TEST(!emb.convex_boundary);
+  BOOST_TEST(std::abs(emb.turning_defect) < 1e-9);  // planar: the turning angles sum to 2 pi
+  BOOST_TEST(emb.residual < 1e-10);
+  // the layout's turning angle is the input's at every boundary vertex: 6 corners (five of pi/2, one of -pi/2)
+  std::size_t convex_corners = 0, reflex_corners = 0;
+  double total_turning = 0;
+  for(int v = 0; v < int(t.number_of_vertices()); ++v) {
+    if(!t.is_boundary_vertex(v)) continue;
+    const double input_turning = pi - t.input_angle_sum(v);
+    BOOST_TEST(std::abs(emb.boundary_turning[std::size_t(v)] - input_turning) < 1e-8);
+    total_turning += emb.boundary_turning[std::size_t(v)];
+    if(std::abs(input_turning - pi / 2) < 1e-9) ++convex_corners;
+    if(std::abs(input_turning + pi / 2) < 1e-9) ++reflex_corners;
+  }
+  BOOST_TEST(convex_corners == 5u);
+  BOOST_TEST(reflex_corners == 1u);
+  BOOST_TEST(std::abs(total_turning - 2 * pi) < 1e-8);
+  // the layout is embedded: no inverted triangle, and its area is the adjusted (metric) area
+  double layout_area = 0, metric_area = 0;
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const Eigen::Vector2d a = emb.uv[std::size_t(t.tail(int(3 * f)))], b = emb.uv[std::size_t(t.tail(int(3 * f + 1)))],
+                          c = emb.uv[std::size_t(t.tail(int(3 * f + 2)))];
+    const double area = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    BOOST_TEST(area > 0);
+    layout_area += area;
+    const double l0 = t.length(int(3 * f)), l1 = t.length(int(3 * f + 1)), l2 = t.length(int(3 * f + 2)),
+                 sp = (l0 + l1 + l2) / 2;
+    metric_area += std::sqrt(std::max(0.0, sp * (sp - l0) * (sp - l1) * (sp - l2)));
+  }
+  BOOST_TEST(std::abs(layout_area - metric_area) < 1e-6 * metric_area);
+
+  // the paper's map (u = 0 on the boundary) on the same input: the default takes it when it is embedded
+  const AC::Planar_embedding lengths = AC::conformal_embedding(t_lengths);
+  BOOST_TEST((lengths.boundary == AC::Planar_boundary::KEEP_LENGTHS));
+  for(int v = 0; v < int(t_lengths.number_of_vertices()); ++v)
+    if(t_lengths.is_boundary_vertex(v)) BOOST_TEST(lengths.u[std::size_t(v)] == 0.0);
+}
+
 // ---------------------------------------------------------------------- weighted CVT and dual
 
 BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)

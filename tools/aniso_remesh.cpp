@@ -88,6 +88,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .random_seed(o.seed)
                     .cvt_method(o.cvt == "lloyd" ? AC::Cvt_method::LLOYD : AC::Cvt_method::LBFGS)
                     .corner_angle(o.corner_angle)
+                    .planar_boundary(o.planar_boundary == "lengths" ? AC::Planar_boundary::KEEP_LENGTHS
+                                     : o.planar_boundary == "shape" ? AC::Planar_boundary::KEEP_SHAPE
+                                                                     : AC::Planar_boundary::AUTOMATIC)
                     .number_of_threads(o.threads)
                     .parametric_domain(o.parametric_domain)
                     .visitor(std::ref(progress));

@@ -47,6 +47,7 @@ struct Options {
   std::string cvt = "lbfgs";
   long long background_vertices = 0;
   double corner_angle = 30;
+  std::string planar_boundary = "automatic";
   unsigned threads = 0;
   // outputs
   std::string output, report, svg, histogram;
@@ -248,6 +249,12 @@ inline void declare_options(CLI::App& app, Options& o)
   add_real(app, "--corner-angle", o.corner_angle, "DEG",
            "boundary turning angle above which a vertex is kept as a corner (default 30)",
            real("in [0, 180)", [](double x) { return x >= 0 && x < 180; }))
+    ->group(re);
+  app.add_option("--planar-boundary", o.planar_boundary,
+                 "disks: what the plane's layout keeps of the boundary: lengths (its metric lengths, the paper's u = 0) | "
+                 "shape (the input's outline) | automatic (lengths, or shape where that layout is not embedded; the default)")
+    ->type_name("KIND")
+    ->check(CLI::IsMember({"automatic", "shape", "lengths"}))
     ->group(re);
   app.add_option("--threads", o.threads, "worker threads of the CVT (default 0: all cores)")
     ->type_name("T")

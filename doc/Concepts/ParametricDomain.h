@@ -38,6 +38,7 @@ class ParametricDomain {
 public:
   /// \name Types
   /// @{
+
   /// the result of stage 3 (`Planar_embedding`, `Spherical_embedding`, ...)
   typedef unspecified_type Embedding;
   /// the domain of stages 4 and 5, a model of `ParametricDomainTraits`
@@ -49,6 +50,7 @@ public:
 
   /// \name Topology
   /// @{
+
   /// the topologies the domain takes, in words, for messages ("closed surfaces of genus 0")
   static const char* topology();
   /// returns `true` if the domain takes the topology of `surface`

@@ -23,9 +23,9 @@ namespace Aniso_conformal {
 /*!
  * \ingroup PkgAnisoConformalDomains
  * the plane, for topological disks (2D domains, images, open curved patches): stage 3 is
- * `conformal_embedding()` (by default the layout keeps the input's outline, its turning angles
- * prescribed and its lengths free, `Planar_boundary::KEEP_SHAPE`; the named parameter
- * `planar_boundary(Planar_boundary::KEEP_LENGTHS)` gives the paper's `u = 0` on the boundary), stages
+ * `conformal_embedding()` (by default, `Planar_boundary::AUTOMATIC`, the paper's `u = 0` on the
+ * boundary, and where that layout is not embedded one that keeps the input's outline, its turning
+ * angles prescribed and its lengths free; the named parameter `planar_boundary` forces either), stages
  * 4 and 5 run in `Planar_domain_traits` (the boundary is a 1D CVT in metric length, corners are fixed
  * sites). Paper sections 3.3-3.5.
  *

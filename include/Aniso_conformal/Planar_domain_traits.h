@@ -54,7 +54,7 @@ namespace Aniso_conformal {
  * does (the added sites come out of the interior's share, so the total stays `n`). The free sites are
  * kept strictly inside that polygon as well as inside the layout (`contains()`), so the constrained
  * Delaunay triangulation of the dual has every site as a vertex and cannot fail on a disk whose layout
- * is embedded (which `conformal_embedding()` guarantees with its default `Planar_boundary::KEEP_SHAPE`).
+ * is embedded (which `conformal_embedding()` guarantees by default: it falls back to `Planar_boundary::KEEP_SHAPE`).
  *
  * Integration is exact: each background triangle is clipped against the Voronoi cells it meets (a
  * restricted Voronoi diagram, found by walking the Delaunay graph from the site nearest to a corner),

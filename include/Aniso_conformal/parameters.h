@@ -47,14 +47,19 @@ enum class Parametric_domain {
  * what the conformal map of a disk into the plane keeps of the boundary (stage 3, `conformal_embedding()`)
  */
 enum class Planar_boundary {
-  /// the input's shape (the default): the turning angle of the input's boundary is prescribed at every
-  /// boundary vertex (its corners keep theirs), the lengths along the boundary are free, so the layout is
-  /// the input's outline (an L stays an L, a square becomes a rectangle) and the conformal factor stays
-  /// bounded; when that outline would touch or cross itself (a boundary that touches itself), a convex one
+  /// the default: `KEEP_LENGTHS` when its layout is embedded (the paper's map, which measured better on
+  /// the images and the paper's figures), `KEEP_SHAPE` when it is not (its Newton solve fails, or the
+  /// boundary bent by the metric crosses itself: a swirling field at a re-entrant corner, a boundary that
+  /// touches itself); `Planar_embedding::boundary` says which one was kept
+  AUTOMATIC,
+  /// the input's shape: the turning angle of the input's boundary is prescribed at every boundary vertex
+  /// (its corners keep theirs), the lengths along the boundary are free, so the layout is the input's
+  /// outline (an L stays an L, a square becomes a rectangle) and the conformal factor stays bounded; when
+  /// that outline would touch or cross itself (a boundary that touches itself), a convex one
   KEEP_SHAPE,
   /// the boundary's metric lengths (`u = 0` on the boundary, the paper's choice): the layout bends the
-  /// boundary as the metric demands, which can make conformal factors huge near it (images at a strong
-  /// anisotropy) or the layout overlap itself
+  /// boundary as the metric demands, which can make conformal factors large near it (images at a strong
+  /// anisotropy) or the layout overlap itself (then a `Remeshing_failure`)
   KEEP_LENGTHS
 };
 

@@ -44,8 +44,9 @@ struct Spherical_embedding {
   std::size_t centring_iterations = 0;    ///< iterations of the Moebius normalisation
   double centre_offset = 0;               ///< norm of the area centroid after the Moebius normalisation
   /// angle distortion of the map: |corner angle of the chordal triangle - corner angle with the adjusted
-  /// lengths|, in degrees, mean and maximum over all corners
-  double angle_distortion_mean = 0, angle_distortion_max = 0;
+  /// lengths|, in degrees, mean over all corners
+  double angle_distortion_mean = 0;
+  double angle_distortion_max = 0;  ///< the same, maximum over all corners (degrees)
 };
 
 

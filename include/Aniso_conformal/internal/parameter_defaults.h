@@ -28,7 +28,7 @@ constexpr unsigned max_flips_per_edge = 50;         // every intrinsic flip pass
 constexpr unsigned max_conformal_iterations = 100;  // Newton iterations (stage 3)
 constexpr double conformal_tolerance = 1e-9;        // radians, on the angle sums
 constexpr Parametric_domain parametric_domain = Parametric_domain::AUTOMATIC;
-constexpr Planar_boundary planar_boundary = Planar_boundary::KEEP_SHAPE;  // stage 3 on a disk
+constexpr Planar_boundary planar_boundary = Planar_boundary::AUTOMATIC;  // stage 3 on a disk
 } // namespace defaults
 
 #define ANISO_CONFORMAL_PARAMETER_GETTER(NAME, TAG, TYPE)                                                          \

@@ -17,7 +17,9 @@
 // (a test module calling remesh() with five combinations compiled it five times). remesh_in_domain()
 // therefore reads the caller's pack once into plain values, wraps the caller's visitor behind one
 // concrete type, and runs the stages with a pack of one fixed type: the pipeline is compiled once per
-// domain and metric, whatever the caller passes.
+// domain and metric, whatever the caller passes. Every named parameter a stage reads must be carried
+// here (Remeshing_options, from() and canonical_parameters()): one left out is silently replaced by its
+// default (test_remesh's planar_boundary_reaches_the_embedding guards the last one added).
 
 namespace Aniso_conformal {
 namespace internal {
@@ -57,6 +59,7 @@ struct Remeshing_options {
   std::size_t max_flips_per_edge = defaults::max_flips_per_edge;
   std::size_t max_conformal_iterations = defaults::max_conformal_iterations;
   double conformal_tolerance = defaults::conformal_tolerance;
+  Planar_boundary planar_boundary = defaults::planar_boundary;
 
   template <typename NamedParameters>
   static Remeshing_options from(const NamedParameters& np)
@@ -72,6 +75,7 @@ struct Remeshing_options {
     o.max_flips_per_edge = internal::max_flips_per_edge(np);
     o.max_conformal_iterations = internal::max_conformal_iterations(np);
     o.conformal_tolerance = internal::conformal_tolerance(np);
+    o.planar_boundary = internal::planar_boundary(np);
     return o;
   }
 };
@@ -89,6 +93,7 @@ inline auto canonical_parameters(const Remeshing_options& o, Visitor_handle& vis
       .max_flips_per_edge(o.max_flips_per_edge)
       .max_conformal_iterations(o.max_conformal_iterations)
       .conformal_tolerance(o.conformal_tolerance)
+      .planar_boundary(o.planar_boundary)
       .visitor(std::ref(vis));
 }
 
