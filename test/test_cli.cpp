@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +27,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 namespace {
 
@@ -159,13 +161,16 @@ BOOST_AUTO_TEST_CASE(parser_rejects_bad_command_lines)
   BOOST_TEST(refused({"--input", "a.off", "--vertices", "10", "--background-vertices", "500"},
                      "--background-vertices applies to --domain square only"));
   BOOST_TEST(refused({"--input", "a.off", "--vertices", "99999999999999999999"}, "not in range 3 to 100000000"));
+  BOOST_TEST(refused({"--domain", "square", "--vertices", "10", "--no-repair"}, "--no-repair requires --input"));
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--no-repair"}).no_repair);
+  BOOST_TEST(!parse({"--input", "a.off", "--vertices", "10"}).no_repair);
 }
 
 BOOST_AUTO_TEST_CASE(help_and_usage_document_the_options_and_exit_codes)
 {
   const std::string u = aniso_remesh::usage();
   for(const char* part : {"usage: aniso_remesh (--input FILE | --domain square | --image FILE) --vertices N",
-                          "--metric-file", "--stretch-max", "--corner-angle", "--histogram", "exit status",
+                          "--metric-file", "--stretch-max", "--corner-angle", "--histogram", "--no-repair", "exit status",
                           "  0  success", "  1  internal failure", "  2  bad input", "  3  valid input that this version cannot remesh"}) {
     BOOST_TEST_INFO("help has '" << part << "'");
     BOOST_TEST(u.find(part) != std::string::npos);
@@ -237,6 +242,9 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_square_and_writes_its_outputs)
 
   BOOST_TEST(slurp(svg).find("<svg") != std::string::npos);
   BOOST_TEST(slurp(hist).find("<svg") != std::string::npos);
+  // nothing was repaired: no summary line, no report object
+  BOOST_TEST(r.out.find("repairs") == std::string::npos);
+  BOOST_TEST(!j.contains("repairs"));
 }
 
 BOOST_AUTO_TEST_CASE(tool_bad_input_exits_2_with_a_message)
@@ -481,4 +489,120 @@ BOOST_AUTO_TEST_CASE(valid_input_this_version_cannot_remesh_exits_3)
   BOOST_TEST(printable_line(r.err));
   BOOST_TEST(r.out.empty());
   BOOST_TEST(!exists(mesh));
+}
+
+// ------------------------------------------------------------------------ repairs on reading (issue 14)
+
+namespace {
+const std::string repair_cases = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/repairs";
+
+// the signed area, seen from +z, of the triangles of an OFF file the tool wrote
+double planar_area_of_off(const std::string& path)
+{
+  std::ifstream f(path);
+  std::string magic;
+  std::size_t nv = 0, nf = 0, ne = 0;
+  f >> magic >> nv >> nf >> ne;
+  std::vector<std::array<double, 2>> p(nv);
+  double z = 0;
+  for(auto& x : p) f >> x[0] >> x[1] >> z;
+  double area = 0;
+  for(std::size_t t = 0; t < nf; ++t) {
+    std::size_t k = 0, a = 0, b = 0, c = 0;
+    f >> k >> a >> b >> c;
+    area += 0.5 * ((p[b][0] - p[a][0]) * (p[c][1] - p[a][1]) - (p[b][1] - p[a][1]) * (p[c][0] - p[a][0]));
+  }
+  return f ? area : 0.0;
+}
+} // namespace
+
+BOOST_AUTO_TEST_CASE(tool_repairs_what_a_user_expects_and_counts_it)
+{
+  struct Case {
+    std::string file, summary, key;
+    nlohmann::json count;
+    std::string refusal;  // with --no-repair
+    int refusal_status;
+  };
+  const std::vector<Case> cases = {
+    {"patch_quads.obj", "repairs      400 polygons triangulated into 800 triangles\n", "polygons_triangulated", 400,
+     "face 0 has 4 vertices", 2},
+    {"patch_soup.off", "repairs      1959 duplicated points welded\n", "points_welded", 1959,
+     "800 connected components; remesh them one at a time", 2},
+    {"disk_unref.off", "repairs      4 vertices of no face dropped\n", "isolated_vertices_dropped", 4,
+     "vertex 169 belongs to no face", 2},
+    {"square4_cw.off", "repairs      clockwise planar input remeshed counter-clockwise, output turned back clockwise\n",
+     "planar_clockwise", true, "its faces are clockwise seen from +z; the planar remesher needs them counter-clockwise: drop --no-repair", 3}};
+  for(const Case& c : cases) {
+    BOOST_TEST_CONTEXT(c.file)
+    {
+      const std::string in = repair_cases + "/" + c.file, mesh = out_dir + "/cli_repaired.off", report = out_dir + "/cli_repaired.json";
+      const std::string before = slurp(in);
+      std::remove(mesh.c_str());
+      Run r = run("--input " + in + " --vertices 120 --iterations 30 --output " + mesh + " --report " + report);
+      BOOST_TEST(r.status == 0, r.err);
+      BOOST_TEST(r.out.find(c.summary) != std::string::npos, r.out);
+      const nlohmann::json j = read_json(report);
+      BOOST_TEST(j.at("output").at("vertices") == 120);
+      BOOST_TEST(j.at("domain") == "plane");
+      BOOST_TEST(j.at("repairs").at(c.key) == c.count);
+      BOOST_TEST(j.at("repairs").at("input_vertices").get<std::size_t>() >= j.at("input").at("vertices").get<std::size_t>());
+      // the output's orientation follows the input (the saddle patches and the disk: counter-clockwise;
+      // the square: clockwise)
+      const double area = planar_area_of_off(mesh);
+      BOOST_TEST_INFO("signed area of the output seen from +z: " << area);
+      BOOST_TEST((c.file == "square4_cw.off" ? area < 0 : area > 0));
+      // --no-repair: the refusal of before, saying the repairs were off
+      std::remove(mesh.c_str());
+      r = run("--input " + in + " --vertices 120 --iterations 30 --no-repair --output " + mesh);
+      BOOST_TEST(r.status == c.refusal_status);
+      BOOST_TEST(r.err.find(c.refusal) != std::string::npos, r.err);
+      if(c.refusal_status == 2) BOOST_TEST(r.err.find("read without repairs") != std::string::npos);
+      BOOST_TEST(printable_line(r.err));
+      BOOST_TEST(!exists(mesh));
+      BOOST_TEST(slurp(in) == before);  // the input file is never changed
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(tool_metric_file_lines_up_with_the_kept_vertices)
+{
+  // disk_unref.off has 173 vertices, 4 of them in no face: the metric file has 173 rows, the last 4
+  // (indefinite here) are ignored; a file of 169 rows is refused, naming the count expected
+  const std::string in = repair_cases + "/disk_unref.off", metric = out_dir + "/cli_unref.metric";
+  std::ostringstream m;
+  m << "173\n";
+  for(int i = 0; i < 173; ++i) m << (i < 169 ? "2 0.5 0 1 0 1\n" : "-1 0 0 -1 0 -1\n");
+  write_file(metric, m.str());
+  Run r = run("--input " + in + " --metric-file " + metric + " --vertices 150 --iterations 20");
+  BOOST_TEST(r.status == 0, r.err);
+  BOOST_TEST(r.out.find("4 vertices of no face dropped") != std::string::npos);
+  std::ostringstream k;
+  k << "169\n";
+  for(int i = 0; i < 169; ++i) k << "1 0 0 1 0 1\n";
+  write_file(metric, k.str());
+  r = run("--input " + in + " --metric-file " + metric + " --vertices 150");
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("declares 169 tensors but the mesh has 173 vertices") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_CASE(tool_refuses_non_manifold_input_saying_what_to_do)
+{
+  // a fin (three triangles on one edge), a bowtie, and a bowtie made by welding a soup: exit 2, one
+  // printable line naming the edge or vertex and the fix
+  const std::string fin = out_dir + "/cli_fin.off", bowtie = out_dir + "/cli_bowtie.off", soup = out_dir + "/cli_bowtie_soup.off";
+  write_file(fin, "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+  write_file(bowtie, "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n");
+  write_file(soup, "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 3 4 5\n");
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+    {fin, {"the edge from vertex 0 to vertex 1 is non-manifold: 3 faces share it", "split the mesh along it"}},
+    {bowtie, {"vertex 0 is non-manifold", "give each fan its own copy of the vertex"}},
+    {soup, {"input vertices 0 and 3, welded as duplicates", "after welding"}}};
+  for(const auto& [file, parts] : cases) {
+    const Run r = run("--input " + file + " --vertices 10");
+    BOOST_TEST_INFO(file << " -> " << r.err);
+    BOOST_TEST(r.status == 2);
+    BOOST_TEST(printable_line(r.err));
+    for(const std::string& part : parts) BOOST_TEST(r.err.find(part) != std::string::npos);
+  }
 }

@@ -133,6 +133,61 @@ BOOST_AUTO_TEST_CASE(bad_mesh_files_name_the_problem)
                       "cannot write"));
 }
 
+BOOST_AUTO_TEST_CASE(mesh_files_are_repaired_in_every_format)
+{
+  // a 2 x 2 grid of quads, clockwise seen from +z, with a vertex of no face, in each format: read as it is
+  // it is refused; with repairs, 4 quads triangulated, 1 vertex dropped, the plane turned counter-clockwise
+  const std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0},
+                                          {2, 1, 0}, {0, 2, 0}, {1, 2, 0}, {2, 2, 0}, {5, 5, 0}};
+  const std::vector<std::vector<std::size_t>> quads = {{0, 3, 4, 1}, {1, 4, 5, 2}, {3, 6, 7, 4}, {4, 7, 8, 5}};
+  std::ostringstream off, obj, ply;
+  off << "OFF\n" << p.size() << " " << quads.size() << " 0\n";
+  obj << "# quads\n";
+  ply << "ply\nformat ascii 1.0\nelement vertex " << p.size() << "\nproperty double x\nproperty double y\nproperty double z\n"
+      << "element face " << quads.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for(const auto& x : p) {
+    off << x.x() << " " << x.y() << " " << x.z() << "\n";
+    obj << "v " << x.x() << " " << x.y() << " " << x.z() << "\n";
+    ply << x.x() << " " << x.y() << " " << x.z() << "\n";
+  }
+  for(const auto& q : quads) {
+    off << "4";
+    obj << "f";
+    ply << "4";
+    for(std::size_t v : q) {
+      off << " " << v;
+      obj << " " << v + 1;
+      ply << " " << v;
+    }
+    off << "\n";
+    obj << "\n";
+    ply << "\n";
+  }
+  for(const auto& [ext, text] : {std::make_pair("off", off.str()), std::make_pair("obj", obj.str()), std::make_pair("ply", ply.str())}) {
+    BOOST_TEST_CONTEXT(ext)
+    {
+      const std::string path = write_file(std::string("quads.") + ext, text);
+      BOOST_TEST(contains(message_of([&] { AC::IO::read_triangle_mesh(path); }), "face 0 has 4 vertices"));
+      AC::Repair_report r;
+      const AC::Input_surface s = AC::IO::read_triangle_mesh(path, r);
+      BOOST_TEST(s.is_disk());
+      BOOST_TEST(s.number_of_vertices() == 9u);
+      BOOST_TEST(s.number_of_faces() == 8u);
+      BOOST_TEST(r.polygons_triangulated == 4u);
+      BOOST_TEST(r.triangles_from_polygons == 8u);
+      BOOST_TEST(r.isolated_points_dropped == 1u);
+      BOOST_TEST(r.planar_clockwise);
+      BOOST_TEST(test::count_mesh(s.points(), s.faces()).planar_area == 4.0);
+      // the soup as read, unrepaired
+      std::vector<Eigen::Vector3d> pts;
+      std::vector<std::vector<std::size_t>> polys;
+      AC::IO::read_polygon_soup(path, pts, polys);
+      BOOST_TEST((pts == p));
+      BOOST_TEST((polys == quads));
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bundled_face_mask_remeshes_as_a_disk)
 {
   // nefertiti.off: a 299-vertex face scan of disk topology, with a curvature metric
@@ -315,6 +370,29 @@ BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
   BOOST_TEST(j.at("cvt").at("energy").size() == r.cvt.energy.size());
   BOOST_TEST(j.at("cvt").at("iterations") == r.cvt.iterations);
   BOOST_TEST(j.at("seconds").size() == std::size_t(AC::number_of_stages) + 1);
+  // nothing repaired: no `repairs` object; a repaired input's report has one, with its counts
+  BOOST_TEST(!j.contains("repairs"));
+  AC::Remeshing_result repaired = r;
+  repaired.repairs.input_points = 8;
+  repaired.repairs.input_polygons = 2;
+  repaired.repairs.polygons_triangulated = 2;
+  repaired.repairs.triangles_from_polygons = 4;
+  repaired.repairs.points_welded = 2;
+  repaired.repairs.planar_clockwise = true;
+  std::ostringstream rj;
+  AC::IO::write_report_json(rj, repaired);
+  const nlohmann::json k = nlohmann::json::parse(rj.str()).at("repairs");
+  BOOST_TEST(k.at("input_vertices") == 8);
+  BOOST_TEST(k.at("input_faces") == 2);
+  BOOST_TEST(k.at("polygons_triangulated") == 2);
+  BOOST_TEST(k.at("triangles_from_polygons") == 4);
+  BOOST_TEST(k.at("points_welded") == 2);
+  BOOST_TEST(k.at("points_left_unwelded") == 0);
+  BOOST_TEST(k.at("duplicate_faces_removed") == 0);
+  BOOST_TEST(k.at("isolated_vertices_dropped") == 0);
+  BOOST_TEST(k.at("faces_reoriented") == 0);
+  BOOST_TEST(k.at("reversed_to_outward") == false);
+  BOOST_TEST(k.at("planar_clockwise") == true);
   // the report's own keys cannot be overwritten, and extra fields must be an object
   BOOST_TEST(contains(message_of([&] { AC::IO::write_report_json(json, r, {{"quality", 1}}); }), "'quality' is a field of the report"));
   BOOST_TEST(contains(message_of([&] { AC::IO::write_report_json(json, r, nlohmann::json::array({1, 2})); }), "must be a JSON object"));

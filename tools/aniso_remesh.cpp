@@ -75,9 +75,10 @@ void write_atomically(const std::string& path, const std::function<void(const st
   }
 }
 
+// `repairs`: what was repaired in --input on reading (null for the square and images)
 template <typename Metric>
 int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const Metric& metric, double background_seconds,
-        const std::string& input_name)
+        const std::string& input_name, const AC::Repair_report* repairs = nullptr)
 {
   Progress_visitor progress;
   progress.enabled = ::isatty(2) && !o.quiet;
@@ -93,7 +94,11 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .number_of_threads(o.threads)
                     .parametric_domain(o.parametric_domain)
                     .visitor(std::ref(progress));
-  const AC::Remeshed_surface out = AC::remesh(surface, metric, result, np);
+  AC::Remeshed_surface out = AC::remesh(surface, metric, result, np);
+  if(repairs) {
+    result.repairs = *repairs;
+    AC::IO::restore_input_orientation(out.faces, *repairs);  // a clockwise planar input gets a clockwise output
+  }
 
   if(!o.output.empty())
     write_atomically(o.output, [&](const std::string& p) { AC::IO::write_polygon_soup(p, out.points, out.faces); });
@@ -131,6 +136,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     if(result.refinement.splits > 0)
       std::printf(", refined from %zu by %zu edge splits", result.refinement.vertices_before, result.refinement.splits);
     std::printf(")\n");
+    if(result.repairs.any()) std::printf("repairs      %s\n", result.repairs.summary().c_str());
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
                 AC::domain_name(result.domain));
@@ -180,23 +186,39 @@ int main_impl(int argc, char** argv)
     if(o.metric == "fig7") return square(AC::make_analytic_metric_2(AC::Circular_metric()));
     return square(AC::Uniform_metric());
   }
-  const AC::Input_surface surface = AC::IO::read_triangle_mesh(o.input);
+  AC::Repair_report repairs;
+  const AC::Input_surface surface =
+    AC::IO::read_triangle_mesh(o.input, repairs, o.no_repair ? AC::Repair_options::none() : AC::Repair_options());
+  if(o.no_repair && surface.is_planar()) {
+    // the planar remesher needs a counter-clockwise input: say so rather than let every output triangle
+    // come out inverted (the repair, off here, reverses it and turns the output back)
+    double area2 = 0;
+    for(const auto& t : surface.faces()) {
+      const Eigen::Vector3d &a = surface.points()[t[0]], &b = surface.points()[t[1]], &c = surface.points()[t[2]];
+      area2 += (b - a).cross(c - a).z();
+    }
+    if(area2 < 0)
+      throw AC::Remeshing_failure("the input lies in the plane z = 0 and its faces are clockwise seen from +z; the planar "
+                                  "remesher needs them counter-clockwise: drop --no-repair (the input is then remeshed "
+                                  "counter-clockwise and the output turned back clockwise), or reverse the faces");
+  }
+  // the metric file has a row per vertex of --input: those of the vertices kept by the repairs are used
   if(!o.metric_file.empty())
-    return run(o, surface, AC::IO::read_metric_file(o.metric_file, surface.number_of_vertices()), 0.0, o.input);
+    return run(o, surface, AC::IO::read_metric_file(o.metric_file, repairs), 0.0, o.input, &repairs);
   if(o.metric == "curvature") {
     AC::Curvature_metric_options co;
     co.stretch_max = o.stretch_max;
     co.smoothing_iterations = o.smoothing_iterations;
     co.smoothing_rings = o.smoothing_rings;
-    return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input);
+    return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input, &repairs);
   }
   if(o.metric == "fig6" || o.metric == "fig7") {
     if(!surface.is_planar())
       throw AC::Invalid_input("--metric " + o.metric + " is a planar metric; " + o.input + " is not in the plane z = 0");
-    if(o.metric == "fig6") return run(o, surface, AC::make_analytic_metric_2(AC::Fig6_metric()), 0.0, o.input);
-    return run(o, surface, AC::make_analytic_metric_2(AC::Circular_metric()), 0.0, o.input);
+    if(o.metric == "fig6") return run(o, surface, AC::make_analytic_metric_2(AC::Fig6_metric()), 0.0, o.input, &repairs);
+    return run(o, surface, AC::make_analytic_metric_2(AC::Circular_metric()), 0.0, o.input, &repairs);
   }
-  return run(o, surface, AC::Uniform_metric(), 0.0, o.input);
+  return run(o, surface, AC::Uniform_metric(), 0.0, o.input, &repairs);
 }
 
 // Every message goes through printable(): a path or a token quoted from a file may hold any byte.

@@ -30,6 +30,7 @@ namespace aniso_remesh {
 struct Options {
   // input: exactly one of these
   std::string input, domain, image;
+  bool no_repair = false;  // --input is read as it is: no repair
   // --domain with --input or --image: the parametric domain, checked against the topology
   Aniso_conformal::Parametric_domain parametric_domain = Aniso_conformal::Parametric_domain::AUTOMATIC;
   // metric
@@ -179,6 +180,11 @@ inline void declare_options(CLI::App& app, Options& o)
     ->check(CLI::IsMember({"square", "automatic", "plane", "flat-torus", "sphere", "hyperbolic"}))
     ->group(in);
   input->excludes(image);
+  app.add_flag("--no-repair", o.no_repair,
+               "read --input as it is: no polygon triangulated, no duplicated point welded, no vertex of no face dropped, "
+               "no face reoriented (by default these repairs are made and counted in the summary and the report)")
+    ->needs(input)
+    ->group(in);
 
   const std::string me = "metric (one of --metric, --metric-file; an image defines its own)";
   CLI::Option* metric = app.add_option("--metric", o.metric,

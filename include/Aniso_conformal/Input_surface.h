@@ -46,10 +46,11 @@ auto bgl_faces(const Graph& g) -> decltype(faces(g))
  * (Euler characteristic, boundary loops, genus), vertex normals and closest-point projection.
  *
  * Every stage works on this copy, so the user's mesh is never modified. Construction checks the
- * input and throws `Invalid_input` with a message naming the offending vertex or face for: an empty
- * mesh, a non-triangular face, a non-finite coordinate, an index out of range, a degenerate face, a
- * non-manifold edge or vertex, inconsistent orientation, an isolated vertex, several connected
- * components.
+ * input and throws `Invalid_input` with a message naming the offending vertex or face and what to do
+ * for: an empty mesh, a non-triangular face, a non-finite coordinate, an index out of range, a
+ * degenerate face, a non-manifold edge or vertex, inconsistent orientation, an isolated vertex, several
+ * connected components. Construction repairs nothing: `IO::repair_polygon_soup()` does, before it
+ * (`IO::input_surface_from_polygon_soup()`, `IO::read_triangle_mesh(path, report)`).
  */
 class Input_surface {
 public:
@@ -64,6 +65,28 @@ public:
   Input_surface(std::vector<Eigen::Vector3d> points, std::vector<Face> faces)
     : m_points(std::move(points)), m_faces(std::move(faces))
   {
+    validate_and_build();
+  }
+
+  /*!
+   * builds the surface as the constructor above does, from triangles repaired from an input
+   * (`IO::repair_polygon_soup()`): its messages name vertex `i` by `input_vertex[i]` and face `f` by
+   * `input_face[f]`, the indices the user finds in the input file. An empty map leaves those indices as
+   * they are.
+   * \throws Invalid_input as the constructor above, and if a map is neither empty nor of the size of
+   *         `points` (`input_vertex`) or `faces` (`input_face`)
+   */
+  Input_surface(std::vector<Eigen::Vector3d> points, std::vector<Face> faces, std::vector<std::size_t> input_vertex,
+                std::vector<std::size_t> input_face)
+    : m_points(std::move(points)), m_faces(std::move(faces)), m_input_vertex(std::move(input_vertex)),
+      m_input_face(std::move(input_face))
+  {
+    if(!m_input_vertex.empty() && m_input_vertex.size() != m_points.size())
+      throw Invalid_input("Input_surface: " + std::to_string(m_input_vertex.size()) + " input vertex indices for " +
+                          std::to_string(m_points.size()) + " vertices");
+    if(!m_input_face.empty() && m_input_face.size() != m_faces.size())
+      throw Invalid_input("Input_surface: " + std::to_string(m_input_face.size()) + " input face indices for " +
+                          std::to_string(m_faces.size()) + " faces");
     validate_and_build();
   }
 
@@ -101,7 +124,9 @@ public:
       }
       if(k != 3)
         throw Invalid_input("face " + std::to_string(fi) + " has " + std::to_string(k) +
-                            " vertices; the input must be a triangle mesh (triangulate it first)");
+                            " vertices; remesh() takes a triangle mesh: triangulate it first (on a copy: "
+                            "CGAL::Polygon_mesh_processing::triangulate_faces() keeps the vertices and their indices, so "
+                            "a metric indexed by vertex still lines up)");
       fs.push_back(t);
       ++fi;
     }
@@ -211,10 +236,13 @@ private:
     m_tree->accelerate_distance_queries();
   }
 
-  static std::string edge_name(std::size_t a, std::size_t b)
+  // vertex `v` and face `f` as the user knows them: their index in the input they were repaired from
+  std::string vertex_name(std::size_t v) const
   {
-    return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
+    return std::to_string(v < m_input_vertex.size() ? m_input_vertex[v] : v);
   }
+  std::string face_name(std::size_t f) const { return std::to_string(f < m_input_face.size() ? m_input_face[f] : f); }
+  std::string edge_name(std::size_t a, std::size_t b) const { return "(" + vertex_name(a) + ", " + vertex_name(b) + ")"; }
 
   void validate_and_build()
   {
@@ -238,7 +266,7 @@ private:
     if(nv == 0 || m_faces.empty()) throw Invalid_input("the input mesh is empty");
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     for(std::size_t i = 0; i < nv; ++i) {
-      if(!m_points[i].allFinite()) throw Invalid_input("vertex " + std::to_string(i) + " has a non-finite coordinate");
+      if(!m_points[i].allFinite()) throw Invalid_input("vertex " + vertex_name(i) + " has a non-finite coordinate");
       lo = lo.cwiseMin(m_points[i]);
       hi = hi.cwiseMax(m_points[i]);
     }
@@ -250,13 +278,13 @@ private:
       const Face& t = m_faces[f];
       for(int k = 0; k < 3; ++k)
         if(t[k] >= nv)
-          throw Invalid_input("face " + std::to_string(f) + " refers to vertex " + std::to_string(t[k]) +
+          throw Invalid_input("face " + face_name(f) + " refers to vertex " + std::to_string(t[k]) +
                               ", but there are only " + std::to_string(nv) + " vertices");
       if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-        throw Invalid_input("face " + std::to_string(f) + " is degenerate (a repeated vertex)");
+        throw Invalid_input("face " + face_name(f) + " is degenerate (a repeated vertex); remove it");
       double area2 = (m_points[t[1]] - m_points[t[0]]).cross(m_points[t[2]] - m_points[t[0]]).norm();
       if(!(area2 > 1e-14 * m_diag * m_diag))
-        throw Invalid_input("face " + std::to_string(f) + " is degenerate (zero area)");
+        throw Invalid_input("face " + face_name(f) + " is degenerate (zero area); remove it, or move its corners apart");
       for(int k = 0; k < 3; ++k) {
         used[t[k]] = 1;
         auto key = std::make_pair(t[k], t[(k + 1) % 3]);
@@ -264,9 +292,11 @@ private:
         if(it != directed.end()) {
           if(directed.count(std::make_pair(key.second, key.first)))
             throw Invalid_input("edge " + edge_name(key.first, key.second) +
-                                " is non-manifold (shared by more than two faces)");
-          throw Invalid_input("faces " + std::to_string(it->second) + " and " + std::to_string(f) +
-                              " have inconsistent orientation along edge " + edge_name(key.first, key.second));
+                                " is non-manifold (shared by more than two faces); split the mesh along it into surfaces "
+                                "and remesh them one at a time");
+          throw Invalid_input("faces " + face_name(it->second) + " and " + face_name(f) +
+                              " have inconsistent orientation along edge " + edge_name(key.first, key.second) +
+                              "; orient the faces consistently");
         }
         directed.emplace(key, f);
       }
@@ -276,7 +306,7 @@ private:
     for(const auto& d : directed)
       ++undirected[std::minmax(d.first.first, d.first.second)];
     for(std::size_t i = 0; i < nv; ++i)
-      if(!used[i]) throw Invalid_input("vertex " + std::to_string(i) + " belongs to no face");
+      if(!used[i]) throw Invalid_input("vertex " + vertex_name(i) + " belongs to no face; remove it");
     m_euler = int(nv) - int(undirected.size()) + int(m_faces.size());
     return directed;
   }
@@ -291,8 +321,8 @@ private:
         boundary_next[d.first.first].push_back(d.first.second);
     for(const auto& b : boundary_next)
       if(b.second.size() > 1)
-        throw Invalid_input("vertex " + std::to_string(b.first) + " is non-manifold (it touches the boundary " +
-                            std::to_string(b.second.size()) + " times)");
+        throw Invalid_input("vertex " + vertex_name(b.first) + " is non-manifold (it touches the boundary " +
+                            std::to_string(b.second.size()) + " times): " + split_vertex_advice);
     std::map<std::size_t, char> visited;
     for(const auto& b : boundary_next) {
       if(visited.count(b.first)) continue;
@@ -333,8 +363,8 @@ private:
         if(a != b) { up[a] = b; --fans; }
       }
       if(fans != 1)
-        throw Invalid_input("vertex " + std::to_string(v) + " is non-manifold (its faces form " +
-                            std::to_string(fans) + " separate fans)");
+        throw Invalid_input("vertex " + vertex_name(v) + " is non-manifold (its faces form " + std::to_string(fans) +
+                            " separate fans): " + split_vertex_advice);
     }
   }
 
@@ -355,13 +385,24 @@ private:
     std::size_t components = 0;
     for(std::size_t i = 0; i < nv; ++i)
       if(find(i) == i) ++components;
-    if(components != 1)
-      throw Invalid_input("the input mesh has " + std::to_string(components) +
-                          " connected components; remesh them one at a time");
+    if(components == 1) return;
+    // a triangle soup (each face with its own corners, as STL writes) is one component per face: say so
+    std::map<std::array<double, 3>, std::size_t> at;
+    std::size_t shared = 0;
+    for(const Eigen::Vector3d& p : m_points) shared += ++at[{p.x(), p.y(), p.z()}] > 1;
+    throw Invalid_input("the input mesh has " + std::to_string(components) +
+                        " connected components; remesh them one at a time (split it into its components)" +
+                        (shared == 0 ? std::string()
+                                     : "; " + std::to_string(shared) + " of its vertices are at the position of another vertex: "
+                                       "if the components are one surface whose faces do not share their vertices, weld them"));
   }
+
+  static constexpr const char* split_vertex_advice =
+    "give each fan of faces its own copy of the vertex, or split the mesh there into surfaces and remesh them one at a time";
 
   std::vector<Eigen::Vector3d> m_points;
   std::vector<Face> m_faces;
+  std::vector<std::size_t> m_input_vertex, m_input_face;  // for messages only: the indices in the input
   std::vector<Eigen::Vector3d> m_normals;
   std::vector<std::vector<std::size_t>> m_loops;
   int m_euler = 0;

@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_REMESHING_RESULT_H
 
 #include <Aniso_conformal/Domain_diagnostics.h>
+#include <Aniso_conformal/IO/Repair_report.h>
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/mesh_quality.h>
@@ -34,6 +35,11 @@ struct Remeshing_result {
   std::size_t background_vertices = 0;             ///< vertices of the background after adjustment
   std::size_t background_faces = 0;                ///< faces of the background after adjustment
   std::size_t corners = 0;                         ///< input corners kept as output vertices
+  /// what was repaired in the input before it became an `Input_surface` (`IO::repair_polygon_soup()`).
+  /// `remesh()` takes a valid surface and repairs nothing: it leaves this empty, and a caller that read
+  /// its input with repairs (`IO::read_triangle_mesh(path, report)`, as the tool does) stores the report
+  /// here after `remesh()`, so that `IO::write_report_json()` writes it
+  Repair_report repairs;
   Refinement_report refinement;                    ///< the background refined for the requested size (stage 2)
   Edge_adjustment_report adjustment;               ///< flips and splits of stage 2
   std::size_t conformal_iterations = 0;            ///< Newton iterations of stage 3

@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_IO_READ_METRIC_FILE_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/IO/Repair_report.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/internal/printable.h>
 
@@ -88,6 +89,28 @@ inline Tensor_field_metric read_metric_file(const std::string& path, std::size_t
     throw Invalid_input("metric file " + path + ": " + std::to_string(tensors.size()) + " rows, but " +
                         std::to_string(declared) + " declared");
   return Tensor_field_metric(std::move(tensors));
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
+ * reads a metric file written for the vertices of a mesh file that was repaired on reading
+ * (`read_triangle_mesh(path, repairs)`): the file has one row per vertex of the mesh file, in its order
+ * (`repairs.kept_vertex.size()` rows, every one checked as `read_metric_file(path, n)` does), and the
+ * metric returned has one tensor per vertex of the repaired surface: the row of the vertex it was kept
+ * as, or, for points welded into one, the row of the first of them. The rows of dropped vertices (points
+ * of no face) are ignored.
+ * \throws Invalid_input as `read_metric_file(path, n)` with `n` the mesh file's vertex count, or if
+ *         `repairs` holds no vertex map (it was not filled by a repair)
+ */
+inline Tensor_field_metric read_metric_file(const std::string& path, const Repair_report& repairs)
+{
+  if(repairs.kept_vertex.empty() || repairs.input_vertex.empty())
+    throw Invalid_input("read_metric_file(): the Repair_report has no vertex map (fill it with read_triangle_mesh(path, report))");
+  const Tensor_field_metric all = read_metric_file(path, repairs.kept_vertex.size());
+  std::vector<Tensor_field_metric::Tensor> kept;
+  kept.reserve(repairs.input_vertex.size());
+  for(std::size_t i : repairs.input_vertex) kept.push_back(all.tensors().at(i));
+  return Tensor_field_metric(std::move(kept));
 }
 
 /*!

@@ -5,6 +5,8 @@
 #define ANISO_CONFORMAL_IO_READ_TRIANGLE_MESH_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/IO/Repair_report.h>
+#include <Aniso_conformal/IO/repair_polygon_soup.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/internal/printable.h>
 
@@ -226,28 +228,30 @@ inline void check_ply_header(const std::string& path)
 
 /*!
  * \ingroup PkgAnisoConformalIO
- * reads a triangle mesh from an OFF, OBJ or PLY file (by extension) and validates it (`Input_surface`).
- * OFF files are ASCII `OFF`, `COFF`, `NOFF` or `CNOFF` (extra numbers on a line are ignored).
+ * reads the polygon soup of an OFF, OBJ or PLY file (by extension): positions and polygons of any size,
+ * as they are in the file (nothing is checked but the syntax and the counts). OFF files are ASCII `OFF`,
+ * `COFF`, `NOFF` or `CNOFF` (extra numbers on a line are ignored), read by our own parser; OBJ and PLY
+ * by CGAL's (`CGAL::IO::read_polygon_soup()`), after a check of the PLY header.
  * \throws Invalid_input naming the file if it cannot be opened or parsed, has an unsupported extension,
- *         declares more vertices or faces than it can hold, or has a face that is not a triangle; and as
- *         `Input_surface` does for a broken mesh
+ *         declares more vertices or faces than it can hold, or holds no vertex or no face
  */
-inline Input_surface read_triangle_mesh(const std::string& path)
+inline void read_polygon_soup(const std::string& path, std::vector<Eigen::Vector3d>& points,
+                              std::vector<std::vector<std::size_t>>& polygons)
 {
   const std::string ext = internal::extension_of(path);
   if(ext != "off" && ext != "obj" && ext != "ply")
     throw Invalid_input("file " + path + ": unsupported extension (use .off, .obj or .ply)");
   if(!std::ifstream(path).good()) throw Invalid_input("file " + path + ": cannot be opened");
-  std::vector<internal::Soup_point> points;
-  std::vector<std::vector<std::size_t>> polygons;
+  std::vector<internal::Soup_point> soup_points;
+  std::vector<std::vector<std::size_t>> soup_polygons;
   bool ok = false;
   try {
     if(ext == "off") {
-      internal::read_off_soup(path, points, polygons);
+      internal::read_off_soup(path, soup_points, soup_polygons);
       ok = true;
     } else {
       if(ext == "ply") internal::check_ply_header(path);
-      ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+      ok = CGAL::IO::read_polygon_soup(path, soup_points, soup_polygons, CGAL::parameters::verbose(false));
     }
   } catch(const Invalid_input&) {
     throw;
@@ -255,23 +259,56 @@ inline Input_surface read_triangle_mesh(const std::string& path)
     throw Invalid_input("file " + path + ": cannot be parsed (" + Aniso_conformal::internal::printable(e.what(), 200) + ")");
   }
   if(!ok) throw Invalid_input("file " + path + ": cannot be parsed as " + ext);
-  if(points.empty() || polygons.empty()) throw Invalid_input("file " + path + ": the mesh is empty");
-  std::vector<Eigen::Vector3d> pts;
-  pts.reserve(points.size());
-  for(const auto& p : points) pts.emplace_back(p.x(), p.y(), p.z());
-  std::vector<Input_surface::Face> faces;
-  faces.reserve(polygons.size());
-  for(std::size_t f = 0; f < polygons.size(); ++f) {
-    if(polygons[f].size() != 3)
-      throw Invalid_input("file " + path + ": face " + std::to_string(f) + " has " + std::to_string(polygons[f].size()) +
-                          " vertices; only triangle meshes are supported");
-    faces.push_back({{polygons[f][0], polygons[f][1], polygons[f][2]}});
-  }
+  if(soup_points.empty() || soup_polygons.empty()) throw Invalid_input("file " + path + ": the mesh is empty");
+  points.clear();
+  points.reserve(soup_points.size());
+  for(const auto& p : soup_points) points.emplace_back(p.x(), p.y(), p.z());
+  polygons = std::move(soup_polygons);
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
+ * reads a mesh from an OFF, OBJ or PLY file (`read_polygon_soup()`), repairs it
+ * (`repair_polygon_soup()` with `options`: polygons triangulated, duplicated points welded, points of no
+ * face dropped, faces oriented consistently, outward if closed, a clockwise planar input handed over
+ * counter-clockwise) and validates it (`Input_surface`). The file is only read.
+ *
+ * A metric file indexed by the file's vertices lines up with the result through `report.kept_vertex`
+ * (`read_metric_file(path, report)`), and a remeshed output gets the input's orientation back with
+ * `restore_input_orientation(faces, report)`.
+ * \param path the file
+ * \param report receives what was repaired and the index maps (written only on success)
+ * \param options the repairs to make (default: all; `Repair_options::none()`: none, as `read_triangle_mesh(path)`)
+ * \throws Invalid_input naming the file, as `read_polygon_soup()`, `repair_polygon_soup()` and
+ *         `Input_surface` do (vertices and faces by their index in the file); when the repairs are off,
+ *         a fault that one of them would have repaired says that the file was read without repairs
+ */
+inline Input_surface read_triangle_mesh(const std::string& path, Repair_report& report,
+                                        const Repair_options& options = Repair_options())
+{
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  read_polygon_soup(path, points, polygons);
   try {
-    return Input_surface(std::move(pts), std::move(faces));
+    return input_surface_from_polygon_soup(std::move(points), std::move(polygons), report, options);
   } catch(const Invalid_input& e) {
-    throw Invalid_input("file " + path + ": " + e.what());
+    throw Invalid_input("file " + path + ": " + e.what() + (options.any() ? "" : " (the file was read without repairs)"));
   }
+}
+
+/*!
+ * \ingroup PkgAnisoConformalIO
+ * reads a triangle mesh from an OFF, OBJ or PLY file (by extension) and validates it (`Input_surface`),
+ * repairing nothing: the file must hold a valid triangle mesh as it is. `read_triangle_mesh(path, report)`
+ * repairs what a user expects to be repaired.
+ * \throws Invalid_input naming the file if it cannot be opened or parsed, has an unsupported extension,
+ *         declares more vertices or faces than it can hold, or has a face that is not a triangle; and as
+ *         `Input_surface` does for a broken mesh
+ */
+inline Input_surface read_triangle_mesh(const std::string& path)
+{
+  Repair_report report;
+  return read_triangle_mesh(path, report, Repair_options::none());
 }
 
 /*!

@@ -66,7 +66,11 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * the report of `r` as a JSON object: `domain`; `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
- * histogram, the normalised metric edge lengths); `refinement` (the background refined for the requested
+ * histogram, the normalised metric edge lengths); `repairs`, only if the input was repaired on reading
+ * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
+ * triangles they became, points welded and points left unwelded, duplicated faces removed, vertices of no face dropped, faces
+ * reoriented, whether a closed surface was turned outward, whether a planar input was clockwise);
+ * `refinement` (the background refined for the requested
  * size: vertices before and after, splits, the output's and the longest edge length in the metric);
  * `edge_adjustment` (flips, splits, rounds, repairs);
  * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range,
@@ -102,6 +106,18 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                     {"normalized_stddev", report_number(q.edge_length_stddev)},
                     {"normalized_min", report_number(q.edge_length_min)},
                     {"normalized_max", report_number(q.edge_length_max)}}}};
+  if(r.repairs.any())
+    j["repairs"] = {{"input_vertices", r.repairs.input_points},
+                    {"input_faces", r.repairs.input_polygons},
+                    {"polygons_triangulated", r.repairs.polygons_triangulated},
+                    {"triangles_from_polygons", r.repairs.triangles_from_polygons},
+                    {"points_welded", r.repairs.points_welded},
+                    {"points_left_unwelded", r.repairs.points_left_unwelded},
+                    {"duplicate_faces_removed", r.repairs.duplicate_polygons_removed},
+                    {"isolated_vertices_dropped", r.repairs.isolated_points_dropped},
+                    {"faces_reoriented", r.repairs.faces_reoriented},
+                    {"reversed_to_outward", r.repairs.reversed_to_outward},
+                    {"planar_clockwise", r.repairs.planar_clockwise}};
   j["refinement"] = {{"vertices_before", r.refinement.vertices_before},
                      {"vertices_after", r.refinement.vertices_after},
                      {"splits", r.refinement.splits},
