@@ -77,6 +77,7 @@ struct Hyperbolic_delaunay_flip_rule {
 // to rounding, so the solver symmetrises it before the Cholesky factorisation.
 struct Hyperbolic_vertex_scaling {
   static constexpr bool symmetrize_hessian = true;
+  static constexpr bool l2_merit = true;  // the line search is Armijo's on the squared angle-sum errors
   double s = 1;  // the global scale
   static const char* name() { return "hyperbolic"; }
   std::array<double, 3> face_lengths(const Intrinsic_triangulation& itri, int f, const std::vector<double>& u) const
