@@ -354,6 +354,32 @@ BOOST_AUTO_TEST_CASE(helmet_with_small_holes_keeps_its_band_small)
   BOOST_TEST(r.domain_diagnostics.value("group_elements") < 200);
 }
 
+// the hyperbolic flip measures the new edge without the law of cosines' cancellation: on edges of
+// hyperbolic length ~1e-7 (scale s tiny, where the geometry is Euclidean to 1e-14) the flipped edge is
+// the Euclidean one to 1e-9; through acosh(cosh a cosh b - sinh a sinh b cos theta) it had no digit left
+// (the femur's sub-degree triangles then flipped into flat ones and Newton's method stalled)
+BOOST_AUTO_TEST_CASE(hyperbolic_flip_keeps_precision_on_short_edges)
+{
+  Background bg(eight_1k());
+  const AC::Intrinsic_triangulation& itri = bg.itri;
+  const std::vector<double> u(itri.number_of_vertices(), 0.0);
+  const AC::internal::Hyperbolic_delaunay_flip_rule rule{u, 1e-7};
+  double worst = 0;
+  for(int h = 0; h < int(itri.number_of_halfedges()); h += 97) {
+    const int t = itri.twin(h);
+    // the Euclidean quad: a = tail(h), b = head(h), c opposite in h's face, d opposite in t's face
+    const double ab = itri.length(h), bc = itri.length(AC::Intrinsic_triangulation::next(h)), ca = itri.length(AC::Intrinsic_triangulation::prev(h));
+    const double ad = itri.length(AC::Intrinsic_triangulation::next(t)), db = itri.length(AC::Intrinsic_triangulation::prev(t));
+    const double angle_c = std::acos(std::clamp((ab * ab + ca * ca - bc * bc) / (2 * ab * ca), -1.0, 1.0));  // at a, in h's face
+    const double angle_d = std::acos(std::clamp((ab * ab + ad * ad - db * db) / (2 * ab * ad), -1.0, 1.0));  // at a, in t's face
+    const double theta = angle_c + angle_d;
+    const double cd = std::sqrt(std::max(0.0, ca * ca + ad * ad - 2 * ca * ad * std::cos(theta)));
+    worst = std::max(worst, std::abs(rule.flipped_length(itri, h) - cd) / cd);
+  }
+  BOOST_TEST_MESSAGE("flipped edge at hyperbolic scale 1e-7: relative error " << worst);
+  BOOST_TEST(worst < 1e-9);
+}
+
 // the band's loop of rounds is bounded: sites on one half of the Klein disk only leave Delaunay
 // circles wider than the first round's limit, so one round allowed is refused with a message naming
 // it; the evenly spread sites close within the default bound
