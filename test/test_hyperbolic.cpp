@@ -335,6 +335,102 @@ BOOST_AUTO_TEST_CASE(genus_three_surface)
                       "cannot read"));
 }
 
+// issue 14, the band blow-up: the helmet's three small holes are large in the hyperbolic plane and
+// small on the surface; the first sites, drawn by the density cf^2 instead of the CVT's cf, left them
+// empty, and one band width for the whole cut then needed more than 240000 face copies at 1000 sites.
+// Drawn by cf, with the band covering each Delaunay disk where it is, it takes some thousands.
+BOOST_AUTO_TEST_CASE(helmet_with_small_holes_keeps_its_band_small)
+{
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/helmet.off");
+  BOOST_REQUIRE(s.genus() == 3);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_hyperbolic(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(1000)));
+  check_output(s, out, 1000, 3);
+  BOOST_TEST_MESSAGE("helmet at 1000: G_avg " << r.quality.G_avg << " theta_min " << r.quality.theta_min << ", "
+                                              << r.domain_diagnostics.value("group_elements") << " group elements, " << r.total_seconds() << " s");
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.quality.G_avg >= 0.88);
+  BOOST_TEST(r.quality.theta_min >= 15.0);
+  BOOST_TEST(r.domain_diagnostics.value("group_elements") < 200);
+}
+
+// the hyperbolic flip measures the new edge without the law of cosines' cancellation: on edges of
+// hyperbolic length ~1e-7 (scale s tiny, where the geometry is Euclidean to 1e-14) the flipped edge is
+// the Euclidean one to 1e-9; through acosh(cosh a cosh b - sinh a sinh b cos theta) it had no digit left
+// (the femur's sub-degree triangles then flipped into flat ones and Newton's method stalled)
+BOOST_AUTO_TEST_CASE(hyperbolic_flip_keeps_precision_on_short_edges)
+{
+  Background bg(eight_1k());
+  const AC::Intrinsic_triangulation& itri = bg.itri;
+  const std::vector<double> u(itri.number_of_vertices(), 0.0);
+  const AC::internal::Hyperbolic_delaunay_flip_rule rule{u, 1e-7};
+  double worst = 0;
+  for(int h = 0; h < int(itri.number_of_halfedges()); h += 97) {
+    const int t = itri.twin(h);
+    // the Euclidean quad: a = tail(h), b = head(h), c opposite in h's face, d opposite in t's face
+    const double ab = itri.length(h), bc = itri.length(AC::Intrinsic_triangulation::next(h)), ca = itri.length(AC::Intrinsic_triangulation::prev(h));
+    const double ad = itri.length(AC::Intrinsic_triangulation::next(t)), db = itri.length(AC::Intrinsic_triangulation::prev(t));
+    const double angle_c = std::acos(std::clamp((ab * ab + ca * ca - bc * bc) / (2 * ab * ca), -1.0, 1.0));  // at a, in h's face
+    const double angle_d = std::acos(std::clamp((ab * ab + ad * ad - db * db) / (2 * ab * ad), -1.0, 1.0));  // at a, in t's face
+    const double theta = angle_c + angle_d;
+    const double cd = std::sqrt(std::max(0.0, ca * ca + ad * ad - 2 * ca * ad * std::cos(theta)));
+    worst = std::max(worst, std::abs(rule.flipped_length(itri, h) - cd) / cd);
+  }
+  BOOST_TEST_MESSAGE("flipped edge at hyperbolic scale 1e-7: relative error " << worst);
+  BOOST_TEST(worst < 1e-9);
+}
+
+// the band's loop of rounds is bounded: sites on one half of the Klein disk only leave Delaunay
+// circles wider than the first round's limit, so one round allowed is refused with a message naming
+// it; the evenly spread sites close within the default bound
+BOOST_AUTO_TEST_CASE(hyperbolic_band_rounds_are_bounded)
+{
+  Background bg(eight_1k());
+  const AC::Hyperbolic_embedding emb = AC::hyperbolic_embedding(bg.itri);
+  AC::Hyperbolic_klein_domain_traits traits(bg.itri, emb, 1);
+  const std::vector<Eigen::Vector3d> sites = traits.initial_sites(200, 0);
+  std::vector<Eigen::Vector3d> wrapped;
+  std::vector<std::size_t> slot;
+  for(const Eigen::Vector3d& p : sites) {
+    int f;
+    Eigen::Vector3d bary;
+    BOOST_REQUIRE(traits.background_location(0, p, f, bary));
+    wrapped.push_back(p);  // initial sites lie in the fundamental domain
+  }
+  // the band of a fresh traits object: a copy of its inputs
+  std::vector<int> face_of_slot(bg.itri.number_of_faces());
+  std::vector<std::size_t> slot_of_face(bg.itri.number_of_faces());
+  for(std::size_t f = 0; f < face_of_slot.size(); ++f) face_of_slot[f] = int(f), slot_of_face[f] = f;
+  for(const Eigen::Vector3d& p : wrapped) {
+    std::size_t found = face_of_slot.size();
+    const Eigen::Vector2d k = AC::internal::to_klein(p);
+    for(std::size_t f = 0; f < face_of_slot.size() && found == face_of_slot.size(); ++f) {
+      const auto& c = emb.corner_klein[f];
+      auto side = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& q) {
+        return (b - a).x() * (q - a).y() - (b - a).y() * (q - a).x();
+      };
+      if(side(c[0], c[1], k) >= -1e-12 && side(c[1], c[2], k) >= -1e-12 && side(c[2], c[0], k) >= -1e-12) found = f;
+    }
+    BOOST_REQUIRE(found < face_of_slot.size());
+    slot.push_back(found);
+  }
+  {
+    std::vector<Eigen::Vector3d> half;
+    std::vector<std::size_t> half_slot;
+    for(std::size_t i = 0; i < wrapped.size(); ++i)
+      if(AC::internal::to_klein(wrapped[i]).x() > 0) half.push_back(wrapped[i]), half_slot.push_back(slot[i]);
+    AC::internal::Hyperbolic_band band(bg.itri, face_of_slot, slot_of_face, emb.side_pairing, emb.corner_hyperboloid);
+    AC::internal::Hyperbolic_power_diagram pr;
+    BOOST_TEST(contains(message_of<AC::Convergence_failure>(
+                            [&] { AC::internal::build_hyperbolic_power_diagram(band, half, half_slot, face_of_slot.size(), emb.area, pr, 1); }),
+                        "did not close"));
+  }
+  AC::internal::Hyperbolic_band band(bg.itri, face_of_slot, slot_of_face, emb.side_pairing, emb.corner_hyperboloid);
+  AC::internal::Hyperbolic_power_diagram pr;
+  BOOST_CHECK_NO_THROW(AC::internal::build_hyperbolic_power_diagram(band, wrapped, slot, face_of_slot.size(), emb.area, pr));
+  for(std::size_t i = 0; i < wrapped.size(); ++i) BOOST_TEST(pr.has_vertex(i));
+}
+
 BOOST_AUTO_TEST_CASE(genus_two_bad_inputs_name_the_problem)
 {
   const AC::Input_surface s = eight_1k();

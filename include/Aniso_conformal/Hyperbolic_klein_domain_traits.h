@@ -86,6 +86,24 @@ public:
       centroids[f] = (c[0] + c[1] + c[2]) / 3.0;
     }
     const std::vector<std::size_t> order = internal::morton_order(centroids, Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1));
+    // the density's floor: cf^2 spreads the sites evenly over the surface, so that a cell's hyperbolic
+    // area goes as 1 / cf; where a part small on the surface is large in the hyperbolic plane (a thin
+    // handle or a small hole takes a hyperbolic area of 4 pi whatever its size) that starves it of sites,
+    // its Voronoi cells reach across it, and the band of images that the cells need grows exponentially
+    // with their radius. The factor is kept at least 1/16 of its mean over the hyperbolic area, so that
+    // no cell is larger than about 16 times the mean (at most 1/16 of the sites go to such parts)
+    double cf_area = 0, hyperbolic_area = 0;
+    for(std::size_t f = 0; f < nf; ++f) {
+      const auto& X = emb.corner_hyperboloid[f];
+      bool deg;
+      const std::array<double, 3> a = internal::hyperbolic_corner_angles(
+          {{internal::hyperbolic_distance(X[0], X[1]), internal::hyperbolic_distance(X[1], X[2]), internal::hyperbolic_distance(X[2], X[0])}}, deg);
+      const double area = std::max(0.0, 3.14159265358979323846 - a[0] - a[1] - a[2]);
+      const auto& c = itri.face_vertices(f);
+      cf_area += area * (emb.conformal_factor[std::size_t(c[0])] + emb.conformal_factor[std::size_t(c[1])] + emb.conformal_factor[std::size_t(c[2])]) / 3;
+      hyperbolic_area += area;
+    }
+    const double cf_floor = hyperbolic_area > 0 ? cf_area / hyperbolic_area / 16 : 0;
     m_tri.reserve(nf);
     m_rho.resize(nf);
     m_frame.reserve(nf);
@@ -95,10 +113,13 @@ public:
       const auto& c = itri.face_vertices(f);
       std::array<double, 3> rho, sample;
       for(int k = 0; k < 3; ++k) {
-        const double cf = emb.conformal_factor[std::size_t(c[k])];
+        const double cf = std::max(emb.conformal_factor[std::size_t(c[k])], cf_floor);
         rho[k] = cf * cf;
-        // the samples' weight includes the area element, so that they follow the hyperbolic mass
-        sample[k] = rho[k] * std::pow(std::max(1e-300, 1 - emb.corner_klein[f][k].squaredNorm()), -1.5);
+        // the samples' weight is the sites' density at the CVT's optimum, rho^(1/2) = cf per hyperbolic
+        // area (a cell's area goes as rho^(-1/2) in two dimensions, Gersho), times the area element: by
+        // rho itself the first sites would crowd where cf is large and leave the parts that are large
+        // in the hyperbolic plane with cells whose band of images no memory holds
+        sample[k] = cf * std::pow(std::max(1e-300, 1 - emb.corner_klein[f][k].squaredNorm()), -1.5);
       }
       m_tri.push_back(internal::make_background_triangle(emb.corner_klein[f], sample, int(f)));
       m_rho[i] = internal::make_background_triangle(emb.corner_klein[f], rho, int(f));
@@ -352,7 +373,7 @@ private:
   void power_diagram(const std::vector<Point>& sites, Wrapped& w, internal::Hyperbolic_power_diagram& pr) const
   {
     wrap_all(sites, w);
-    internal::build_hyperbolic_power_diagram(m_band, w.points, w.slot, m_tri.size(), m_area, m_face_size, pr);
+    internal::build_hyperbolic_power_diagram(m_band, w.points, w.slot, m_tri.size(), m_area, pr);
   }
 
   int m_genus = 0;

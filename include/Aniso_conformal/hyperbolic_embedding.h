@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -132,7 +133,15 @@ inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const T
   }
   for(const auto& c : X)
     for(const auto& x : c) emb.radius = std::max(emb.radius, hyperbolic_distance(x, Eigen::Vector3d::UnitX()));
+  // a corner that is not finite (a layout beyond double precision) must not pass the checks: std::max
+  // keeps its first argument when compared with NaN
+  bool finite = true;
+  for(const auto& c : X)
+    for(const auto& x : c) finite = finite && x.allFinite();
   const double layout_tol = 1e-6 * std::cosh(emb.radius) * std::cosh(emb.radius);
+  if(!finite)
+    throw Convergence_failure("hyperbolic embedding: the layout of the fundamental domain left double precision (a corner is not finite)",
+                              std::numeric_limits<double>::infinity());
   if(!(lorentz <= layout_tol && emb.gluing_error <= 1e-6 && emb.relation_error <= layout_tol))
     throw Convergence_failure("hyperbolic embedding: the layout is inconsistent (Lorentz defect " + std::to_string(lorentz) +
                                   ", gluing error " + std::to_string(emb.gluing_error) + ", relation error " +
@@ -198,10 +207,6 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
                               double(emb.degenerate_triangles));
 
   // ---- 2. cut along the edges not in the cotree and unfold the disk breadth-first on the hyperboloid
-  const internal::Tree_cotree tc = internal::tree_cotree(itri);
-  if(int(tc.generators.size()) != 2 * emb.genus)
-    throw Internal_error("hyperbolic embedding: the tree-cotree decomposition found " + std::to_string(tc.generators.size()) +
-                         " generators instead of " + std::to_string(2 * emb.genus));
   std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
   std::vector<double> domain_area(static_cast<std::size_t>(nf));
   for(int f = 0; f < nf; ++f) {
@@ -215,6 +220,18 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
     throw Convergence_failure("hyperbolic embedding: the hyperbolic area is " + std::to_string(emb.area) + " instead of 4 pi (g - 1) = " +
                                   std::to_string(4 * pi * (emb.genus - 1)),
                               std::abs(emb.area - 4 * pi * (emb.genus - 1)));
+  // the cotree grows along shortest hyperbolic paths from a central face (a dual edge measured by the
+  // mean edge length of its two faces), so that the fundamental domain reaches no farther than it must
+  std::vector<double> dual_length(itri.number_of_halfedges());
+  for(int h = 0; h < int(itri.number_of_halfedges()); ++h) {
+    const auto& p = L[std::size_t(h / 3)];
+    const auto& q = L[std::size_t(Intrinsic_triangulation::face(itri.twin(h)))];
+    dual_length[std::size_t(h)] = (p[0] + p[1] + p[2] + q[0] + q[1] + q[2]) / 6;
+  }
+  const internal::Tree_cotree tc = internal::tree_cotree(itri, &dual_length);
+  if(int(tc.generators.size()) != 2 * emb.genus)
+    throw Internal_error("hyperbolic embedding: the tree-cotree decomposition found " + std::to_string(tc.generators.size()) +
+                         " generators instead of " + std::to_string(2 * emb.genus));
   std::vector<char> done;
   const int root = tc.root_face;  // the central face: the layout stays as close to the centre as it can
   const double l0 = L[std::size_t(root)][0];

@@ -118,6 +118,7 @@ struct Euclidean_delaunay_flip_rule {
 // cotangent Laplacian (exactly symmetric, so no symmetrisation).
 struct Euclidean_vertex_scaling {
   static constexpr bool symmetrize_hessian = false;
+  static constexpr bool l2_merit = false;  // the line search backtracks on the largest angle-sum error
   static const char* name() { return "Euclidean"; }
   std::array<double, 3> face_lengths(const Intrinsic_triangulation& itri, int f, const std::vector<double>& u) const
   {

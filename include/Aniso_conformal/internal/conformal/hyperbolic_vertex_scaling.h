@@ -67,9 +67,13 @@ struct Hyperbolic_delaunay_flip_rule {
     const double l_ca = hyperbolic_length(itri, Intrinsic_triangulation::prev(h), s, u);
     const double l_ad = hyperbolic_length(itri, Intrinsic_triangulation::next(t), s, u);
     const double theta = A[0] + B[1];  // angle at a between c and d
-    const double ch = std::cosh(l_ca) * std::cosh(l_ad) - std::sinh(l_ca) * std::sinh(l_ad) * std::cos(theta);
-    const double l_cd = std::acosh(std::max(1.0, ch));
-    return std::sinh(0.5 * l_cd) * std::exp(-0.5 * (u[std::size_t(c)] + u[std::size_t(d)])) / s;
+    // the law of cosines without its cancellation on short edges: cosh l - 1 = 2 sinh^2 (l / 2), so
+    // sinh^2 (l_cd / 2) = sinh^2 ((l_ca - l_ad) / 2) + sinh l_ca sinh l_ad sin^2 (theta / 2) (through
+    // acosh(cosh a cosh b - sinh a sinh b cos theta) an edge of 1e-6 kept 4 digits, and the flips of
+    // the femur's sub-degree triangles made flat ones)
+    const double sh = std::sinh(0.5 * (l_ca - l_ad)), st = std::sin(0.5 * theta);
+    const double sinh_half = std::sqrt(sh * sh + std::sinh(l_ca) * std::sinh(l_ad) * st * st);
+    return sinh_half * std::exp(-0.5 * (u[std::size_t(c)] + u[std::size_t(d)])) / s;
   }
 };
 
@@ -77,6 +81,7 @@ struct Hyperbolic_delaunay_flip_rule {
 // to rounding, so the solver symmetrises it before the Cholesky factorisation.
 struct Hyperbolic_vertex_scaling {
   static constexpr bool symmetrize_hessian = true;
+  static constexpr bool l2_merit = true;  // the line search is Armijo's on the squared angle-sum errors
   double s = 1;  // the global scale
   static const char* name() { return "hyperbolic"; }
   std::array<double, 3> face_lengths(const Intrinsic_triangulation& itri, int f, const std::vector<double>& u) const

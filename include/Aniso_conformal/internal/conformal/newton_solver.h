@@ -103,6 +103,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
   double residual = std::numeric_limits<double>::infinity();  // the angle-sum error, for the messages
   std::size_t it = 0;
   bool connectivity_changed = false;
+  double squared_error = 0;  // sum of the squared angle-sum errors at the last evaluation
   // angle sums and (optionally) the Hessian at scales u, after the Delaunay flips; returns the residual
   auto evaluate = [&](const std::vector<double>& u, bool with_hessian, std::size_t& degenerate) {
     const Flip_pass pass = flip_to_delaunay(itri, geometry.flip_rule(u, keep_star), bounds.flips_per_edge);
@@ -127,8 +128,13 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
       if(with_hessian) geometry.add_hessian(c, l, a, deg, index, triplets);
     }
     double r = 0;
+    squared_error = 0;
     for(int v = 0; v < nv; ++v)
-      if(index[std::size_t(v)] >= 0) r = std::max(r, std::abs(target(v) - angle_sum[std::size_t(v)]));
+      if(index[std::size_t(v)] >= 0) {
+        const double e = target(v) - angle_sum[std::size_t(v)];
+        r = std::max(r, std::abs(e));
+        squared_error += e * e;
+      }
     return r;
   };
 
@@ -158,14 +164,37 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
                                     failure + ")",
                                 residual);
     connectivity_changed = false;
-    // backtracking on the residual: the energy is convex, so a full step is nearly always taken
     std::vector<double> trial(static_cast<std::size_t>(nv));
     double step = 1.0;
     std::size_t deg_new = 0;
-    for(int k = 0; k < 40; ++k, step *= 0.5) {
-      for(int v = 0; v < nv; ++v)
-        trial[std::size_t(v)] = index[std::size_t(v)] >= 0 ? sol.u[std::size_t(v)] + step * du[index[std::size_t(v)]] : sol.u[std::size_t(v)];
-      if(evaluate(trial, false, deg_new) < residual || k == 39) break;
+    if constexpr(Geometry::l2_merit) {
+      // Armijo backtracking on the sum of the squared angle-sum errors, a merit function the Newton
+      // direction provably decreases (its derivative along du is -2 times its value), so that a start
+      // far from the solution (sub-degree angles, thin parts) is globalised: halvings until the sum
+      // drops by the fraction 1e-4 of its predicted decrease; a failure after 40 halvings is reported
+      // every trial flips from the triangulation of the current iterate (a rejected step's flips are undone)
+      const double merit = squared_error;
+      const Intrinsic_triangulation base = itri;
+      bool accepted = false;
+      for(int k = 0; k < 40 && !accepted; ++k, step *= 0.5) {
+        if(k > 0) itri = base;
+        for(int v = 0; v < nv; ++v)
+          trial[std::size_t(v)] = index[std::size_t(v)] >= 0 ? sol.u[std::size_t(v)] + step * du[index[std::size_t(v)]] : sol.u[std::size_t(v)];
+        evaluate(trial, false, deg_new);
+        accepted = squared_error <= (1 - 2e-4 * step) * merit;
+        if(accepted) break;
+      }
+      if(!accepted)
+        throw Convergence_failure(who + ": the line search of Newton's method found no decrease of the angle-sum error at iteration " +
+                                      std::to_string(it) + " (angle-sum error " + std::to_string(residual) + ")",
+                                  residual);
+    } else {
+      // backtracking on the residual: the energy is convex, so a full step is nearly always taken
+      for(int k = 0; k < 40; ++k, step *= 0.5) {
+        for(int v = 0; v < nv; ++v)
+          trial[std::size_t(v)] = index[std::size_t(v)] >= 0 ? sol.u[std::size_t(v)] + step * du[index[std::size_t(v)]] : sol.u[std::size_t(v)];
+        if(evaluate(trial, false, deg_new) < residual || k == 39) break;
+      }
     }
     sol.u.swap(trial);
     residual = evaluate(sol.u, true, degenerate);

@@ -17,11 +17,18 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <queue>
+#include <set>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -37,7 +44,8 @@ namespace internal {
 // demand. A slot is the index of a background triangle in the traits' (Morton) order.
 class Hyperbolic_band {
 public:
-  // a face copy of the Dijkstra over the tiles: background triangle (slot) and group element
+  // a face copy: background triangle (slot) and group element; `distance` is the Dijkstra's distance
+  // for the copies of the first band, -1 for those added to cover a Delaunay disk
   struct Face_copy {
     std::size_t slot;
     int element;
@@ -53,31 +61,84 @@ public:
     : m_itri(&itri), m_face_of_slot(std::move(face_of_slot)), m_slot_of_face(std::move(slot_of_face)),
       m_pairing(std::move(pairing)), m_corners(std::move(corners)), m_group(1, Eigen::Matrix3d::Identity()),
       m_group_inverse(1, Eigen::Matrix3d::Identity())
-  {}
+  {
+    // each face lies in the ball of radius m_face_radius around its centroid (balls are convex)
+    m_centroid.resize(m_face_of_slot.size());
+    m_face_radius.resize(m_face_of_slot.size());
+    for(std::size_t i = 0; i < m_face_of_slot.size(); ++i) {
+      const auto& c = m_corners[std::size_t(m_face_of_slot[i])];
+      m_centroid[i] = normalize_on_hyperboloid(c[0] + c[1] + c[2]);
+      m_face_radius[i] = std::max({hyperbolic_distance(m_centroid[i], c[0]), hyperbolic_distance(m_centroid[i], c[1]),
+                                   hyperbolic_distance(m_centroid[i], c[2])});
+    }
+    // the cut: the edges glued by a non-trivial deck transformation, as midpoints and half lengths
+    for(std::size_t h = 0; h < m_pairing.size(); ++h) {
+      if(m_pairing[h] == Eigen::Matrix3d::Identity()) continue;
+      const auto& c = m_corners[h / 3];
+      const Eigen::Vector3d& a = c[h % 3];
+      const Eigen::Vector3d& b = c[(h % 3 + 1) % 3];
+      m_cut_midpoint.push_back(normalize_on_hyperboloid(a + b));
+      m_cut_half_length.push_back(0.5 * hyperbolic_distance(a, b));
+    }
+    m_distance_to_cut.assign(m_face_of_slot.size(), -1.0);
+  }
+
+  // a lower bound on the distance from any point of the face in `slot` to the cut (the boundary of the
+  // fundamental domain): d(centroid, midpoint) - half length - face radius, over the cut edges; cached
+  double distance_to_cut(std::size_t slot)
+  {
+    double& d = m_distance_to_cut[slot];
+    if(d < 0) {
+      d = std::numeric_limits<double>::infinity();
+      for(std::size_t e = 0; e < m_cut_midpoint.size(); ++e)
+        d = std::min(d, hyperbolic_distance(m_centroid[slot], m_cut_midpoint[e]) - m_cut_half_length[e]);
+      d = std::max(0.0, d - m_face_radius[slot]);
+    }
+    return d;
+  }
 
   const std::vector<Eigen::Matrix3d>& elements() const { return m_group; }          // element 0 is the identity
   const std::vector<Eigen::Matrix3d>& inverse_elements() const { return m_group_inverse; }
-  const std::vector<Face_copy>& copies() const { return m_copies; }                  // by distance, without element 0
-  double reached() const { return m_band_reached; }                                  // the band explored so far
+  const std::vector<Face_copy>& copies() const { return m_copies; }                  // without element 0
+  double reached() const { return m_band_reached; }                                  // the first band explored so far
   const std::vector<Eigen::Matrix3d>& pairing() const { return m_pairing; }
   const std::vector<std::array<Eigen::Vector3d, 3>>& corners() const { return m_corners; }
+  std::size_t cap() const { return 60 * m_face_of_slot.size(); }                     // the most copies the band holds
 
   // the index of group element G, added if new. Elements differ by where they take the apex: the group
   // acts freely, so two elements take it at least the shortest closed geodesic apart (far above 1e-3),
   // while one element reached along two paths differs by the layout's rounding (about 1e-6 far out)
+  // (searched among the elements whose image of the apex has nearly the same x0 = cosh(distance to the
+  // apex): within 1e-3, x0 differs by less than 1e-3 sinh(distance + 1e-3) <= 1.01e-3 x0)
   int element_index(const Eigen::Matrix3d& G)
   {
     const Eigen::Vector3d o = G.col(0);
-    for(std::size_t i = 0; i < m_group.size(); ++i)
-      if(hyperbolic_distance(m_group[i].col(0), o) < 1e-3) return int(i);
+    if(m_by_height.empty()) m_by_height.emplace(1.0, 0);  // the identity
+    const double slack = 2e-3 * o.x() + 1e-9;
+    for(auto it = m_by_height.lower_bound(o.x() - slack); it != m_by_height.end() && it->first <= o.x() + slack; ++it)
+      if(hyperbolic_distance(m_group[std::size_t(it->second)].col(0), o) < 1e-3) return it->second;
     m_group.push_back(G);
     m_group_inverse.push_back(lorentz_inverse(G));
+    m_by_height.emplace(o.x(), int(m_group.size() - 1));
     return int(m_group.size() - 1);
+  }
+
+  // the copy across halfedge k of the face in `slot` from the copy (slot, element)
+  std::pair<std::size_t, int> neighbour(std::size_t slot, int element, int k)
+  {
+    const int f = m_face_of_slot[slot];
+    const int h = 3 * f + k, t = m_itri->twin(h);
+    const std::size_t next_slot = m_slot_of_face[std::size_t(Intrinsic_triangulation::face(t))];
+    if(m_pairing[std::size_t(h)] == Eigen::Matrix3d::Identity()) return {next_slot, element};
+    const std::uint64_t key = (std::uint64_t(std::uint32_t(element)) << 32) | std::uint64_t(std::uint32_t(h));
+    auto it = m_step.find(key);
+    if(it == m_step.end()) it = m_step.emplace(key, element_index(m_group[std::size_t(element)] * m_pairing[std::size_t(h)])).first;
+    return {next_slot, it->second};
   }
 
   // Explores the tiles across the cut up to `band` from the fundamental domain: a Dijkstra over face
   // copies, the distance of a copy being that of its centroid to the point where the path left the
-  // fundamental domain. Bounded: at most 60 x (faces) copies.
+  // fundamental domain. The copies added by cover_disk() are kept. Bounded: at most cap() copies.
   // \throws Convergence_failure if the band needs more copies
   void ensure(double band)
   {
@@ -90,35 +151,30 @@ public:
     std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
     for(std::size_t s = 0; s < nf; ++s) queue.push({0.0, {s, 0}});
     for(std::size_t s = 0; s < nf; ++s) best[{s, 0}] = 0.0;
-    const std::size_t cap = 60 * nf;
+    std::vector<Face_copy> kept;  // the copies cover_disk() added
+    for(const Face_copy& c : m_copies)
+      if(c.distance < 0) kept.push_back(c);
     m_copies.clear();
+    m_member.clear();
     while(!queue.empty()) {
       const Entry top = queue.top();
       queue.pop();
       const Key key = top.second;
       if(top.first > best[key]) continue;
-      if(key.second != 0) m_copies.push_back({key.first, key.second, top.first});
-      if(m_copies.size() > cap)
-        throw Convergence_failure("hyperbolic domain: the band of " + std::to_string(band) +
-                                      " around the fundamental domain needs more than " + std::to_string(cap) +
-                                      " face copies (too few sites for this surface and metric)",
-                                  band);
-      const int f = m_face_of_slot[key.first];
+      if(key.second != 0) add_copy({key.first, key.second, top.first}, band);
       for(int k = 0; k < 3; ++k) {
-        const int h = 3 * f + k, t = m_itri->twin(h);
-        const Eigen::Matrix3d& P = m_pairing[std::size_t(h)];
-        const bool cut = P != Eigen::Matrix3d::Identity();
-        const int element = cut ? element_index(m_group[std::size_t(key.second)] * P) : key.second;
-        const Key next(m_slot_of_face[std::size_t(Intrinsic_triangulation::face(t))], element);
-        if(element == 0) continue;  // back in the fundamental domain
+        const Key next = neighbour(key.first, key.second, k);
+        if(next.second == 0) continue;  // back in the fundamental domain
         Eigen::Vector3d src;
-        if(key.second == 0) {  // leaving the fundamental domain through the edge of h
-          const auto& c = m_corners[std::size_t(f)];
+        if(key.second == 0) {  // leaving the fundamental domain through edge k
+          const auto& c = m_corners[std::size_t(m_face_of_slot[key.first])];
           src = normalize_on_hyperboloid(c[std::size_t(k)] + c[std::size_t((k + 1) % 3)]);
         } else {
           src = source[key];
         }
-        const double d = hyperbolic_distance(src, copy_centroid(next.first, next.second));
+        // the centroid's distance, less the radius of the face around it: every copy across the edge it
+        // left by is kept, and a copy is kept when it may reach within `band` of that edge
+        const double d = std::max(0.0, hyperbolic_distance(src, copy_centroid(next.first, next.second)) - m_face_radius[next.first]);
         if(d > band) continue;
         auto it = best.find(next);
         if(it != best.end() && it->second <= d) continue;
@@ -127,14 +183,56 @@ public:
         queue.push({d, next});
       }
     }
+    for(const Face_copy& c : kept)
+      if(!m_member.count(key_of(c.slot, c.element))) add_copy(c, band);
     m_band_reached = band;
   }
 
+  // Adds every copy that meets the closed hyperbolic disk of centre `centre` and radius `radius`,
+  // found breadth-first from the copy (slot, 0) of the fundamental domain, which must meet the disk
+  // (a copy is taken to meet it when the ball around its centroid holding it does). Returns the
+  // number of copies added: 0 when every image in the disk was already a point of the band.
+  // \throws Convergence_failure if the band would exceed cap() copies
+  std::size_t cover_disk(const Eigen::Vector3d& centre, double radius, std::size_t slot)
+  {
+    typedef std::pair<std::size_t, int> Key;
+    std::vector<Key> stack(1, Key(slot, 0));
+    std::set<Key> seen(stack.begin(), stack.end());
+    std::size_t added = 0;
+    while(!stack.empty()) {
+      const Key key = stack.back();
+      stack.pop_back();
+      if(key.second != 0 && !m_member.count(key_of(key.first, key.second))) {
+        add_copy({key.first, key.second, -1.0}, radius);
+        ++added;
+      }
+      for(int k = 0; k < 3; ++k) {
+        const Key next = neighbour(key.first, key.second, k);
+        if(seen.count(next)) continue;
+        if(hyperbolic_distance(centre, copy_centroid(next.first, next.second)) - m_face_radius[next.first] > radius) continue;
+        seen.insert(next);
+        stack.push_back(next);
+      }
+    }
+    return added;
+  }
+
 private:
+  static std::uint64_t key_of(std::size_t slot, int element) { return (std::uint64_t(std::uint32_t(element)) << 32) | std::uint64_t(slot); }
+
+  void add_copy(const Face_copy& c, double band)
+  {
+    if(m_copies.size() >= cap())
+      throw Convergence_failure("hyperbolic domain: the band of images around the fundamental domain (reaching " + std::to_string(band) +
+                                    ") needs more than " + std::to_string(cap()) + " face copies (too few sites for this surface and metric)",
+                                band);
+    m_member.insert(key_of(c.slot, c.element));
+    m_copies.push_back(c);
+  }
+
   Eigen::Vector3d copy_centroid(std::size_t slot, int element) const
   {
-    const auto& c = m_corners[std::size_t(m_face_of_slot[slot])];
-    return Eigen::Vector3d(normalize_on_hyperboloid(m_group[std::size_t(element)] * (c[0] + c[1] + c[2])));
+    return element == 0 ? m_centroid[slot] : Eigen::Vector3d(normalize_on_hyperboloid(m_group[std::size_t(element)] * m_centroid[slot]));
   }
 
   const Intrinsic_triangulation* m_itri = nullptr;
@@ -142,8 +240,16 @@ private:
   std::vector<std::size_t> m_slot_of_face;
   std::vector<Eigen::Matrix3d> m_pairing;
   std::vector<std::array<Eigen::Vector3d, 3>> m_corners;
+  std::vector<Eigen::Vector3d> m_centroid;  // per slot, the centroid of its face
+  std::vector<double> m_face_radius;        // per slot, the largest distance from that centroid to a corner
+  std::vector<Eigen::Vector3d> m_cut_midpoint;  // per edge of the cut, its midpoint ...
+  std::vector<double> m_cut_half_length;        // ... and half its length
+  std::vector<double> m_distance_to_cut;        // per slot, distance_to_cut() once computed (-1 before)
   std::vector<Eigen::Matrix3d> m_group, m_group_inverse;
+  std::multimap<double, int> m_by_height;  // the elements by the x0 of their image of the apex
   std::vector<Face_copy> m_copies;
+  std::unordered_set<std::uint64_t> m_member;             // the copies, as (element, slot)
+  std::unordered_map<std::uint64_t, int> m_step;          // (element, halfedge) -> element across it
   double m_band_reached = 0;
 };
 
@@ -185,59 +291,72 @@ inline void build_power_diagram(Hyperbolic_power_diagram& pr)
   for(auto v = pr.rt.finite_vertices_begin(); v != pr.rt.finite_vertices_end(); ++v) pr.handle[std::size_t(v->info())] = v;
 }
 
-// true if every Delaunay circle at an original site (one of the first ns points) lies within the band:
-// its centre is within r of the fundamental domain, so its disk lies within 2 r, where every image is present
-inline bool power_diagram_is_complete(const Hyperbolic_power_diagram& pr, std::size_t ns, double band, double face_size)
-{
-  for(auto f = pr.rt.finite_faces_begin(); f != pr.rt.finite_faces_end(); ++f) {
-    const bool at_original = f->vertex(0)->info() < int(ns) || f->vertex(1)->info() < int(ns) || f->vertex(2)->info() < int(ns);
-    if(!at_original) continue;
-    const Klein_kernel::Point_2 c = pr.rt.weighted_circumcenter(f);
-    const Eigen::Vector2d k(c.x(), c.y());
-    if(!(k.squaredNorm() < 1)) return false;  // not a hyperbolic circle: an image is missing
-    const double r = hyperbolic_distance(from_klein(k), pr.points[std::size_t(f->vertex(0)->info())]);
-    if(!(2 * r + face_size <= band)) return false;
-  }
-  return true;
-}
-
 /*
  * The power diagram of the sites `wrapped` (in the fundamental domain; slot[i]: the background triangle
- * holding site i) and of their images in a band around the fundamental domain: the band starts at three
- * site spacings (sqrt(area / n)) plus `face_size` and is widened (x1.6, 8 attempts) until every Delaunay
- * circle that matters lies in it.
- * \throws Convergence_failure if it never does (Voronoi cells too large for the band)
+ * holding site i) and of enough of their images around the fundamental domain. The band starts at three
+ * site spacings (sqrt(area / n)); then every Delaunay face at an original site is checked: every copy
+ * of a background face that meets its circumscribed disk must be in the band (Hyperbolic_band::cover_disk()
+ * adds those missing), so that no missing image can lie in the disk and the face is a face of the
+ * Delaunay triangulation of all the images. A face whose circumcentre is not a point of the hyperbolic
+ * plane (no image beyond it yet), or whose circle is wider than this round's limit (two site spacings,
+ * doubled at each round), gets instead the copies in the disk of that limit around its original site.
+ * Faces whose disk stays nearer to their site than the cut are skipped. The band thus follows the local size of the Voronoi cells (which
+ * differs by orders of magnitude over a surface with thin parts, where the conformal factor is small)
+ * instead of one width for the whole boundary of the fundamental domain. Bounded: 16 rounds, and the
+ * band's cap on copies.
+ * \throws Convergence_failure if the band does not close within these bounds
  */
 inline void build_hyperbolic_power_diagram(Hyperbolic_band& band, const std::vector<Eigen::Vector3d>& wrapped,
                                            const std::vector<std::size_t>& slot, std::size_t number_of_slots, double area,
-                                           double face_size, Hyperbolic_power_diagram& pr)
+                                           Hyperbolic_power_diagram& pr, std::size_t max_rounds = 16)
 {
   const std::size_t ns = wrapped.size();
   const double spacing = std::sqrt(area / double(ns));
-  double widen = 3;
-  for(int attempt = 0; attempt < 8; ++attempt, widen *= 1.6) {
-    const double width = widen * spacing + face_size;
-    band.ensure(width);
+  band.ensure(3 * spacing);
+  // an image of site s by element g lies in the copy (slot of s, g)
+  std::vector<std::vector<std::size_t>> by_slot(number_of_slots);
+  for(std::size_t i = 0; i < ns; ++i) by_slot[slot[i]].push_back(i);
+  for(std::size_t round = 0; round < max_rounds; ++round) {
     pr.points.assign(wrapped.begin(), wrapped.end());
     pr.original.resize(ns);
     pr.element.assign(ns, 0);
     for(std::size_t i = 0; i < ns; ++i) pr.original[i] = int(i);
-    // an image of site s by element g lies in the copy (slot of s, g)
-    std::vector<std::vector<std::size_t>> by_slot(number_of_slots);
-    for(std::size_t i = 0; i < ns; ++i) by_slot[slot[i]].push_back(i);
-    for(const Hyperbolic_band::Face_copy& c : band.copies()) {
-      if(c.distance > width) continue;
+    for(const Hyperbolic_band::Face_copy& c : band.copies())
       for(std::size_t s : by_slot[c.slot]) {
         pr.points.push_back(normalize_on_hyperboloid(band.elements()[std::size_t(c.element)] * wrapped[s]));
         pr.original.push_back(int(s));
         pr.element.push_back(c.element);
       }
-    }
     build_power_diagram(pr);
-    if(power_diagram_is_complete(pr, ns, width, face_size)) return;
+    std::size_t added = 0;
+    bool unbounded = false;
+    for(auto f = pr.rt.finite_faces_begin(); f != pr.rt.finite_faces_end(); ++f) {
+      int s = -1;
+      for(int k = 0; k < 3 && s < 0; ++k)
+        if(f->vertex(k)->info() < int(ns)) s = f->vertex(k)->info();
+      if(s < 0) continue;
+      const Eigen::Vector3d& x = pr.points[std::size_t(s)];
+      // the disk this round may cover, doubling from two site spacings: a wider circle (or none) means
+      // that images are missing beyond it, which the growing disk around the site finds first, without
+      // covering more than twice the largest Voronoi cell
+      const double limit = std::ldexp(2 * spacing, int(round));
+      const Klein_kernel::Point_2 c = pr.rt.weighted_circumcenter(f);
+      const Eigen::Vector2d k(c.x(), c.y());
+      const Eigen::Vector3d centre = k.squaredNorm() < 1 ? from_klein(k) : Eigen::Vector3d::Zero();
+      const double r = k.squaredNorm() < 1 ? hyperbolic_distance(centre, x) * (1 + 1e-9) : std::numeric_limits<double>::infinity();
+      // the disk lies within 2 r of the site: inside the fundamental domain when that is nearer than the cut
+      if(2 * r < band.distance_to_cut(slot[std::size_t(s)])) continue;
+      if(r <= limit) {
+        added += band.cover_disk(centre, r, slot[std::size_t(s)]);
+      } else {  // not a hyperbolic circle, or one far wider than its triangle: an image is missing beyond it
+        unbounded = true;
+        added += band.cover_disk(x, limit, slot[std::size_t(s)]);
+      }
+    }
+    if(added == 0 && !unbounded) return;
   }
-  throw Convergence_failure("hyperbolic domain: " + std::to_string(ns) +
-                                " sites leave Voronoi cells too large for the band of images around the fundamental domain",
+  throw Convergence_failure("hyperbolic domain: the band of images around the fundamental domain did not close around the Voronoi cells of " +
+                                std::to_string(ns) + " sites within " + std::to_string(max_rounds) + " rounds",
                             double(ns));
 }
 

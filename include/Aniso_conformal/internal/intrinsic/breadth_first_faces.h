@@ -17,6 +17,7 @@ namespace internal {
 // came from, across which each was reached (-1 for `start`). Serves the cotree and the layouts.
 struct Face_breadth_first {
   std::vector<int> order, distance, via;
+  std::vector<double> length;  // filled by the searches that measure lengths (tree_cotree()), else empty
 };
 
 template <typename MayCross>
