@@ -82,6 +82,8 @@ struct Newton_bounds {
  * terminate in exact arithmetic, so hitting theirs means rounding made them cycle) or the factorisation
  * fails (CHOLMOD and then Eigen's LDLT: the message gives both reasons).
  */
+// size: one Newton loop whose evaluation, step and two line searches (Euclidean: on the residual;
+// hyperbolic: Armijo on the squared errors, undoing a rejected step's flips) share its state; 132 lines
 template <typename Geometry, typename Visitor>
 Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const Geometry& geometry, const std::vector<char>& fixed,
                                           std::vector<double> u0, const Newton_bounds& bounds, Visitor& vis, const std::string& who,
