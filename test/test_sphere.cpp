@@ -561,6 +561,24 @@ BOOST_AUTO_TEST_CASE(coarse_faceted_inputs_are_not_flagged_as_inverted)
   BOOST_TEST(AC::internal::count_inverted_triangles(s, flipped) >= std::size_t(0.98 * double(out.faces.size())));
 }
 
+BOOST_AUTO_TEST_CASE(thin_closed_pillow_remeshes_at_few_and_many_vertices)
+{
+  // a closed ellipsoid 1 x 1 x 0.05: refused at every N before issue 14 (inverted triangles along its
+  // rim, judged against averaged vertex normals; N above its 3010 vertices refused); now at 150 and 4000
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/pillow_005.off");
+  for(std::size_t n : {std::size_t(150), std::size_t(4000)}) {
+    BOOST_TEST_CONTEXT("n = " << n)
+    {
+      AC::Remeshing_result r;
+      const AC::Remeshed_surface out = remesh_sphere(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+      check_sphere_output(s, out, n);
+      BOOST_TEST(r.inverted_triangles == 0u);
+      BOOST_TEST(r.quality.G_avg > 0.88);
+      BOOST_TEST(r.quality.theta_min > 10.0);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)
 {
   // the cow's legs and tail: the conformal map to the sphere shrinks them below double precision
