@@ -3,7 +3,8 @@
 //
 // Unit tests of the pipeline's stages, each called on its own: the metric models (incl. the curvature
 // metric on a sphere, a cylinder and a saddle), metric square roots, the intrinsic triangulation,
-// edge-length adjustment, the conformal embedding, the weighted CVT, the dual mesh and the quality module.
+// edge-length adjustment, the conformal embedding, the weighted CVT, the dual mesh, the surface
+// optimisation and the quality module.
 
 #define BOOST_TEST_MODULE Aniso_conformal_stages
 #include <boost/test/unit_test.hpp>
@@ -22,6 +23,7 @@
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/optimize_surface_mesh.h>
 #include <Aniso_conformal/refine_background.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
@@ -641,4 +643,156 @@ BOOST_AUTO_TEST_CASE(quality_is_measured_in_the_metric)
 
   BOOST_TEST(invalid_input_message([&] { AC::compute_mesh_quality(flat, tri, {}); }).find("one metric per vertex") !=
              std::string::npos);
+}
+
+// ------------------------------------------------------------------------- surface optimisation
+
+namespace {
+
+// `mesh` as an output lying on `input`: every vertex projected onto it
+AC::Remeshed_surface on_the_input(const AC::Input_surface& input, const AC::Input_surface& mesh)
+{
+  AC::Remeshed_surface out;
+  out.faces.assign(mesh.faces().begin(), mesh.faces().end());
+  for(const Eigen::Vector3d& p : mesh.points()) {
+    out.surface_points.push_back(input.project(p));
+    out.points.push_back(out.surface_points.back().position);
+  }
+  return out;
+}
+
+// moves vertex `v` of `out` to `p` projected onto `input`
+void move_vertex(const AC::Input_surface& input, AC::Remeshed_surface& out, std::size_t v, const Eigen::Vector3d& p)
+{
+  out.surface_points[v] = input.project(p);
+  out.points[v] = out.surface_points[v].position;
+}
+
+std::size_t inverted_triangles(const AC::Input_surface& input, const AC::Remeshed_surface& out)
+{
+  std::size_t n = 0;
+  for(const auto& f : out.faces)
+    n += AC::internal::triangle_is_inverted(input, out.points[f[0]], out.points[f[1]], out.points[f[2]], out.surface_points[f[0]],
+                                            out.surface_points[f[1]], out.surface_points[f[2]]);
+  return n;
+}
+
+// the checks every optimised mesh passes: same vertex count and topology as `before`, every vertex on
+// the input (its surface point and its position agree), the fixed vertices `fixed` unmoved, the report's
+// "after" figures those of compute_mesh_quality() and of the inverted-triangle test
+template <typename Metric>
+void check_optimised(const AC::Input_surface& input, const Metric& metric, const AC::Remeshed_surface& before,
+                     const AC::Remeshed_surface& after, const AC::Surface_optimization_report& r,
+                     const std::vector<std::size_t>& fixed)
+{
+  BOOST_TEST(r.ran);
+  BOOST_TEST(after.points.size() == before.points.size());
+  BOOST_TEST(after.surface_points.size() == before.points.size());
+  BOOST_TEST(after.faces.size() == before.faces.size());
+  const AC::Input_surface a(after.points, {after.faces.begin(), after.faces.end()});
+  const AC::Input_surface b(before.points, {before.faces.begin(), before.faces.end()});
+  BOOST_TEST(a.genus() == b.genus());
+  BOOST_TEST(a.boundary_loops().size() == b.boundary_loops().size());
+  double off_input = 0;
+  for(std::size_t i = 0; i < after.points.size(); ++i) {
+    BOOST_TEST((after.surface_points[i].position - after.points[i]).norm() == 0.0);
+    off_input = std::max(off_input, (input.project(after.points[i]).position - after.points[i]).norm());
+  }
+  BOOST_TEST(off_input < 1e-12);
+  for(std::size_t v : fixed) BOOST_TEST((after.points[v] - before.points[v]).norm() == 0.0);
+  std::vector<Eigen::Matrix3d> Q;
+  for(const AC::Surface_point& sp : after.surface_points) Q.push_back(AC::internal::symmetric_sqrt(metric.tensor(sp)));
+  const AC::Quality_report q = AC::compute_mesh_quality(after.points, after.faces, Q, 1);
+  BOOST_TEST(q.G_min == r.G_min_after);
+  BOOST_TEST(q.G_avg == r.G_avg_after);
+  BOOST_TEST(q.theta_min == r.theta_min_after);
+  BOOST_TEST(inverted_triangles(input, after) == r.inverted_after);
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(surface_optimization_on_a_sphere_keeps_the_mesh_on_it_and_repairs_a_fold)
+{
+  const AC::Input_surface input = uv_sphere(64, 32, 1.0);
+  // an anisotropic metric: lengths along x count twice
+  const AC::Tensor_field_metric metric(
+    std::vector<Eigen::Matrix3d>(input.number_of_vertices(), Eigen::Vector3d(4, 1, 1).asDiagonal().toDenseMatrix()));
+  const AC::Remeshed_surface coarse = on_the_input(input, uv_sphere(16, 10, 1.03));
+
+  // on a valid mesh: more quality, never less
+  AC::Remeshed_surface out = coarse;
+  const AC::Surface_optimization_report r = AC::optimize_surface_mesh(input, metric, out);
+  check_optimised(input, metric, coarse, out, r, {});
+  BOOST_TEST_MESSAGE("sphere, 162 vertices: " << r.rounds << " rounds, " << r.flips << " flips, " << r.relocations
+                     << " moves; G_min " << r.G_min_before << " -> " << r.G_min_after << ", G_avg " << r.G_avg_before << " -> "
+                     << r.G_avg_after << ", theta_min " << r.theta_min_before << " -> " << r.theta_min_after << ", %<30 "
+                     << r.percent_below_30_before << " -> " << r.percent_below_30_after);
+  BOOST_TEST(r.inverted_before == 0u);
+  BOOST_TEST(r.inverted_after == 0u);
+  BOOST_TEST(r.flips + r.relocations > 0u);
+  BOOST_TEST(r.G_min_after >= r.G_min_before);
+  BOOST_TEST(r.G_avg_after > r.G_avg_before);
+  BOOST_TEST(r.theta_min_after >= r.theta_min_before);
+  BOOST_TEST(r.percent_below_30_after <= r.percent_below_30_before);
+
+  // a vertex pushed past its neighbour folds triangles over: repaired
+  AC::Remeshed_surface folded = coarse;
+  const std::size_t v = 1 + 4 * 16 + 5, w = 1 + 4 * 16 + 6;  // neighbours on the ring j = 5
+  move_vertex(input, folded, v, folded.points[v] + 1.5 * (folded.points[w] - folded.points[v]));
+  BOOST_TEST(inverted_triangles(input, folded) > 0u);
+  AC::Remeshed_surface repaired = folded;
+  const AC::Surface_optimization_report f = AC::optimize_surface_mesh(input, metric, repaired);
+  check_optimised(input, metric, folded, repaired, f, {});
+  BOOST_TEST_MESSAGE("planted fold: inverted " << f.inverted_before << " -> " << f.inverted_after << ", G_min "
+                     << f.G_min_before << " -> " << f.G_min_after);
+  BOOST_TEST(f.inverted_before == inverted_triangles(input, folded));
+  BOOST_TEST(f.inverted_after == 0u);
+  BOOST_TEST(f.G_avg_after > f.G_avg_before);
+
+  // no rounds, nothing done
+  AC::Remeshed_surface untouched = folded;
+  BOOST_TEST(!AC::optimize_surface_mesh(input, metric, untouched, 0).ran);
+  BOOST_TEST(untouched.points == folded.points);
+}
+
+BOOST_AUTO_TEST_CASE(surface_optimization_in_the_plane_keeps_the_boundary_and_repairs_a_fold)
+{
+  auto square = [](double u, double v) { return Eigen::Vector3d(u, v, 0); };
+  const AC::Input_surface input = grid_surface(4, 4, square);
+  // the output: a 12 x 12 grid, its interior jittered, in a metric that stretches y by 3
+  const AC::Input_surface grid = grid_surface(12, 12, square);
+  AC::Remeshed_surface jittered = on_the_input(input, grid);
+  std::vector<std::size_t> boundary;
+  for(std::size_t i = 0; i < jittered.points.size(); ++i) {
+    const Eigen::Vector3d p = jittered.points[i];
+    if(p.x() == 0 || p.y() == 0 || p.x() == 1 || p.y() == 1) {
+      boundary.push_back(i);
+      continue;
+    }
+    move_vertex(input, jittered, i, p + 0.03 * Eigen::Vector3d(std::sin(7.0 * double(i)), std::cos(5.0 * double(i)), 0));
+  }
+  const AC::Tensor_field_metric metric(
+    std::vector<Eigen::Matrix3d>(input.number_of_vertices(), Eigen::Vector3d(1, 9, 0).asDiagonal().toDenseMatrix()));
+  AC::Remeshed_surface out = jittered;
+  const AC::Surface_optimization_report r = AC::optimize_surface_mesh(input, metric, out);
+  check_optimised(input, metric, jittered, out, r, boundary);
+  BOOST_TEST(r.fixed_vertices == boundary.size());
+  BOOST_TEST_MESSAGE("square, 169 vertices: " << r.flips << " flips, " << r.relocations << " moves; G_min " << r.G_min_before
+                     << " -> " << r.G_min_after << ", G_avg " << r.G_avg_before << " -> " << r.G_avg_after << ", theta_min "
+                     << r.theta_min_before << " -> " << r.theta_min_after);
+  BOOST_TEST(r.G_min_after >= r.G_min_before);
+  BOOST_TEST(r.G_avg_after > r.G_avg_before);
+  BOOST_TEST(r.theta_min_after >= r.theta_min_before);
+  BOOST_TEST(r.percent_below_30_after <= r.percent_below_30_before);
+  for(const Eigen::Vector3d& p : out.points) BOOST_TEST(p.z() == 0.0);
+
+  // an interior vertex pushed across its neighbour's far side
+  AC::Remeshed_surface folded = jittered;
+  const std::size_t v = 6 * 13 + 6, w = 6 * 13 + 7;
+  move_vertex(input, folded, v, folded.points[v] + 1.6 * (folded.points[w] - folded.points[v]));
+  BOOST_TEST(inverted_triangles(input, folded) > 0u);
+  AC::Remeshed_surface repaired = folded;
+  const AC::Surface_optimization_report f = AC::optimize_surface_mesh(input, metric, repaired);
+  check_optimised(input, metric, folded, repaired, f, boundary);
+  BOOST_TEST(f.inverted_after == 0u);
 }

@@ -91,6 +91,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .planar_boundary(o.planar_boundary == "lengths" ? AC::Planar_boundary::KEEP_LENGTHS
                                      : o.planar_boundary == "shape" ? AC::Planar_boundary::KEEP_SHAPE
                                                                      : AC::Planar_boundary::AUTOMATIC)
+                    .surface_optimization(o.surface_optimization == "off"      ? AC::Surface_optimization::OFF
+                                          : o.surface_optimization == "always" ? AC::Surface_optimization::ALWAYS
+                                                                               : AC::Surface_optimization::REPAIR)
                     .number_of_threads(o.threads)
                     .parametric_domain(o.parametric_domain)
                     .visitor(std::ref(progress));
@@ -151,6 +154,13 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 result.adjustment.flips, result.adjustment.splits, result.adjustment.repaired_triangles,
                 result.conformal_iterations, result.conformal_residual, result.conformal_flips, result.cvt.iterations,
                 o.cvt.c_str());
+    const AC::Surface_optimization_report& so = result.surface_optimization;
+    if(so.ran)
+      std::printf("optimised    on the surface: %zu rounds, %zu flips, %zu vertex moves; inverted %zu -> %zu, G_min %.4f -> "
+                  "%.4f, G_avg %.4f -> %.4f, theta_min %.2f -> %.2f, %%<30 %.3f -> %.3f\n",
+                  so.rounds, so.flips, so.relocations, so.inverted_before, so.inverted_after, so.G_min_before, so.G_min_after,
+                  so.G_avg_before, so.G_avg_after, so.theta_min_before, so.theta_min_after, so.percent_below_30_before,
+                  so.percent_below_30_after);
     if(!result.domain_diagnostics.summary.empty())
       std::printf("%-12s %s\n", AC::domain_name(result.domain), result.domain_diagnostics.summary.c_str());
     std::printf("time         background %.3f s, total %.3f s (", background_seconds, background_seconds + result.total_seconds());

@@ -48,6 +48,7 @@ struct Options {
   long long background_vertices = 0;
   double corner_angle = 30;
   std::string planar_boundary = "automatic";
+  std::string surface_optimization = "repair";
   unsigned threads = 0;
   // outputs
   std::string output, report, svg, histogram;
@@ -255,6 +256,12 @@ inline void declare_options(CLI::App& app, Options& o)
                  "shape (the input's outline) | automatic (lengths, or shape where that layout is not embedded; the default)")
     ->type_name("KIND")
     ->check(CLI::IsMember({"automatic", "shape", "lengths"}))
+    ->group(re);
+  app.add_option("--surface-optimization", o.surface_optimization,
+                 "final flips and vertex moves of the output on the input, in the metric: off | repair (only when the "
+                 "dual mesh has inverted triangles, to repair them; the default) | always")
+    ->type_name("WHEN")
+    ->check(CLI::IsMember({"off", "repair", "always"}))
     ->group(re);
   app.add_option("--threads", o.threads, "worker threads of the CVT (default 0: all cores)")
     ->type_name("T")

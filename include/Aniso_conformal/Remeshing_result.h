@@ -9,6 +9,7 @@
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/optimize_surface_mesh.h>
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/refine_background.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
@@ -49,7 +50,11 @@ struct Remeshing_result {
   double conformal_factor_max = 0;                 ///< largest conformal factor
   Cvt_report cvt;                                  ///< energies and iterations of stage 4
   std::size_t boundary_sites = 0;                  ///< output vertices on the boundary
-  std::size_t inverted_triangles = 0;              ///< output triangles whose orientation disagrees with the input
+  /// the final optimisation on the surface (`Stage::SURFACE_OPTIMIZATION`): what it did, quality before and after
+  Surface_optimization_report surface_optimization;
+  /// output triangles whose orientation disagrees with the input (after the surface optimisation; an
+  /// output with any is refused, so this is 0 in a returned result)
+  std::size_t inverted_triangles = 0;
   Quality_report quality;                          ///< quality of the output in the metric
   /// symmetric Hausdorff distance between the output and the input, approximated by closest-point
   /// queries from the output's vertices, edge midpoints and face centroids to the input and from the

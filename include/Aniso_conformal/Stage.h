@@ -18,14 +18,15 @@ enum class Stage {
   EMBEDDING,     ///< conformal embedding into the domain
   CVT,           ///< weighted CVT in the domain
   DUAL_MESH,     ///< dual Delaunay mesh mapped back onto the input
+  SURFACE_OPTIMIZATION,  ///< flips and vertex moves on the input, in the metric (`optimize_surface_mesh()`)
   QUALITY        ///< quality measured in the metric
 };
 
 /// number of enumerators of `Stage`
-constexpr int number_of_stages = 6;
+constexpr int number_of_stages = 7;
 
 /// \ingroup PkgAnisoConformalVisitors
-/// the name of a stage ("metric", "edge_lengths", "embedding", "cvt", "dual_mesh", "quality")
+/// the name of a stage ("metric", "edge_lengths", "embedding", "cvt", "dual_mesh", "surface_optimization", "quality")
 inline const char* stage_name(Stage s)
 {
   switch(s) {
@@ -34,6 +35,7 @@ inline const char* stage_name(Stage s)
   case Stage::EMBEDDING: return "embedding";
   case Stage::CVT: return "cvt";
   case Stage::DUAL_MESH: return "dual_mesh";
+  case Stage::SURFACE_OPTIMIZATION: return "surface_optimization";
   case Stage::QUALITY: return "quality";
   }
   return "unknown";

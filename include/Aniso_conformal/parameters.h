@@ -65,6 +65,17 @@ enum class Planar_boundary {
 
 /*!
  * \ingroup PkgAnisoConformalParameters
+ * when the final optimisation of the output on the input surface runs (`optimize_surface_mesh()`, stage
+ * `Stage::SURFACE_OPTIMIZATION`)
+ */
+enum class Surface_optimization {
+  OFF,     ///< never: the dual mesh of stage 5 is the output (refused if it has an inverted triangle)
+  REPAIR,  ///< only when the dual mesh has inverted triangles, to repair them (the default)
+  ALWAYS   ///< on every output
+};
+
+/*!
+ * \ingroup PkgAnisoConformalParameters
  * the name of a domain, as the command-line tool spells it ("plane", "flat-torus", ...)
  */
 inline const char* domain_name(Parametric_domain d)

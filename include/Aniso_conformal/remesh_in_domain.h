@@ -64,9 +64,12 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);
   std::vector<typename Domain::Traits::Point> sites = traits.initial_sites(n, options.random_seed);
   const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
-  const Remeshed_surface out = cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+  Remeshed_surface out = cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
   result.seconds[int(Stage::CVT)] += setup_seconds;
   result.domain_diagnostics = Domain::diagnostics(emb, traits);
+
+  // the optimisation on the surface, in the metric (always, or to repair inverted triangles)
+  optimize_output(surface, metric, out, options.surface_optimization, vis, result, options.number_of_threads);
 
   // 6. quality in the metric, orientation against the input, topology and distance to the input
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);

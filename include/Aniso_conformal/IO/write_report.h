@@ -72,7 +72,9 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * reoriented, whether a closed surface was turned outward, whether a planar input was clockwise);
  * `refinement` (the background refined for the requested
  * size: vertices before and after, splits, the output's and the longest edge length in the metric);
- * `edge_adjustment` (flips, splits, rounds, repairs);
+ * `edge_adjustment` (flips, splits, rounds, repairs); `surface_optimization`, only if that stage ran
+ * (`Surface_optimization_report`: rounds, flips, relocations, fixed vertices, inverted triangles and
+ * G_min, G_avg, theta_min, %<30 before and after it);
  * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range,
  * and the domain's own figures from `r.domain_diagnostics`, written generically: a scalar, a vector or a
  * matrix as rows); `cvt` (method, iterations, energy per iteration); `seconds` (wall time per stage and
@@ -143,6 +145,23 @@ inline nlohmann::json report_json(const Remeshing_result& r)
               {"lloyd_fallbacks", r.cvt.lloyd_fallbacks},
               {"relative_gradient_norm", report_number(r.cvt.gradient_norm)},
               {"energy", internal::report_numbers(r.cvt.energy)}};
+  const Surface_optimization_report& so = r.surface_optimization;
+  if(so.ran)
+    j["surface_optimization"] = {{"ran", so.ran},
+                               {"rounds", so.rounds},
+                               {"flips", so.flips},
+                               {"relocations", so.relocations},
+                               {"fixed_vertices", so.fixed_vertices},
+                               {"inverted_before", so.inverted_before},
+                               {"inverted_after", so.inverted_after},
+                               {"G_min_before", report_number(so.G_min_before)},
+                               {"G_avg_before", report_number(so.G_avg_before)},
+                               {"theta_min_before", report_number(so.theta_min_before)},
+                               {"percent_below_30_before", report_number(so.percent_below_30_before)},
+                               {"G_min_after", report_number(so.G_min_after)},
+                               {"G_avg_after", report_number(so.G_avg_after)},
+                               {"theta_min_after", report_number(so.theta_min_after)},
+                               {"percent_below_30_after", report_number(so.percent_below_30_after)}};
   nlohmann::json& seconds = j["seconds"];
   for(int s = 0; s < number_of_stages; ++s) seconds[stage_name(Stage(s))] = report_number(r.seconds[s]);
   seconds["total"] = report_number(r.total_seconds());

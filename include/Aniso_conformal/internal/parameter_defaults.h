@@ -29,6 +29,8 @@ constexpr unsigned max_conformal_iterations = 100;  // Newton iterations (stage 
 constexpr double conformal_tolerance = 1e-9;        // radians, on the angle sums
 constexpr Parametric_domain parametric_domain = Parametric_domain::AUTOMATIC;
 constexpr Planar_boundary planar_boundary = Planar_boundary::AUTOMATIC;  // stage 3 on a disk
+constexpr Surface_optimization surface_optimization = Surface_optimization::REPAIR;
+constexpr std::size_t surface_optimization_rounds = 5;  // bound on the rounds of the surface optimisation
 } // namespace defaults
 
 #define ANISO_CONFORMAL_PARAMETER_GETTER(NAME, TAG, TYPE)                                                          \
@@ -48,6 +50,7 @@ ANISO_CONFORMAL_PARAMETER_GETTER(max_conformal_iterations, internal_np::max_conf
 ANISO_CONFORMAL_PARAMETER_GETTER(conformal_tolerance, internal_np::conformal_tolerance, double)
 ANISO_CONFORMAL_PARAMETER_GETTER(parametric_domain, internal_np::parametric_domain, Parametric_domain)
 ANISO_CONFORMAL_PARAMETER_GETTER(planar_boundary, internal_np::planar_boundary, Planar_boundary)
+ANISO_CONFORMAL_PARAMETER_GETTER(surface_optimization, internal_np::surface_optimization, Surface_optimization)
 #undef ANISO_CONFORMAL_PARAMETER_GETTER
 
 // the number of output vertices: required, 0 when not given

@@ -14,3 +14,4 @@ ANISO_CONFORMAL_ADD_NAMED_PARAMETER(max_flips_per_edge_t, max_flips_per_edge, ma
 ANISO_CONFORMAL_ADD_NAMED_PARAMETER(number_of_threads_t, number_of_threads, number_of_threads)
 ANISO_CONFORMAL_ADD_NAMED_PARAMETER(parametric_domain_t, parametric_domain, parametric_domain)
 ANISO_CONFORMAL_ADD_NAMED_PARAMETER(planar_boundary_t, planar_boundary, planar_boundary)
+ANISO_CONFORMAL_ADD_NAMED_PARAMETER(surface_optimization_t, surface_optimization, surface_optimization)

@@ -60,6 +60,7 @@ struct Remeshing_options {
   std::size_t max_conformal_iterations = defaults::max_conformal_iterations;
   double conformal_tolerance = defaults::conformal_tolerance;
   Planar_boundary planar_boundary = defaults::planar_boundary;
+  Surface_optimization surface_optimization = defaults::surface_optimization;
 
   template <typename NamedParameters>
   static Remeshing_options from(const NamedParameters& np)
@@ -76,6 +77,7 @@ struct Remeshing_options {
     o.max_conformal_iterations = internal::max_conformal_iterations(np);
     o.conformal_tolerance = internal::conformal_tolerance(np);
     o.planar_boundary = internal::planar_boundary(np);
+    o.surface_optimization = internal::surface_optimization(np);
     return o;
   }
 };
@@ -94,6 +96,7 @@ inline auto canonical_parameters(const Remeshing_options& o, Visitor_handle& vis
       .max_conformal_iterations(o.max_conformal_iterations)
       .conformal_tolerance(o.conformal_tolerance)
       .planar_boundary(o.planar_boundary)
+      .surface_optimization(o.surface_optimization)
       .visitor(std::ref(vis));
 }
 

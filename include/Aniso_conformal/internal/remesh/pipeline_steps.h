@@ -12,10 +12,12 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/optimize/triangle_orientation.h>
 #include <Aniso_conformal/internal/parallel_for.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/mesh_quality.h>
+#include <Aniso_conformal/optimize_surface_mesh.h>
 #include <Aniso_conformal/refine_background.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
@@ -175,36 +177,29 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
 }
 
 // the output triangles whose normal disagrees with the input's normals at their corners (the +z axis
-// for a planar input)
+// for a planar input): triangle_is_inverted()
 inline std::size_t count_inverted_triangles(const Input_surface& surface, const Remeshed_surface& out, unsigned threads = 0)
 {
-  // A triangle is inverted when its normal disagrees (dot <= 0) with every reference normal of the input
-  // around it: the vertex normals interpolated at its corners, and the normal of each input face that
-  // holds one of its corners. On a smooth input these agree; on a coarse faceted one (a 12-triangle cube,
-  // a 140-vertex blob) an output triangle close to a sharp crease can disagree with the averaged vertex
-  // normals while lying correctly on the faces it touches, which alone would flag a valid triangle.
   std::vector<char> inverted(out.faces.size(), 0);
   parallel_for(out.faces.size(), threads, [&](std::size_t i) {
     const auto& f = out.faces[i];
-    const Eigen::Vector3d nf = (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]);
-    if(surface.is_planar()) {
-      inverted[i] = !(nf.z() > 0);
-      return;
-    }
-    Eigen::Vector3d ref = Eigen::Vector3d::Zero();
-    bool agrees = false;
-    for(int k = 0; k < 3; ++k) {
-      const Surface_point& sp = out.surface_points[f[k]];
-      for(int j = 0; j < 3; ++j) ref += sp.barycentric[j] * surface.vertex_normals()[sp.vertices[j]];
-      if(sp.vertices[0] != sp.vertices[1]) {  // inside or on the border of an input face: its normal
-        const Eigen::Vector3d& a = surface.points()[sp.vertices[0]];
-        const Eigen::Vector3d nface = (surface.points()[sp.vertices[1]] - a).cross(surface.points()[sp.vertices[2]] - a);
-        agrees = agrees || nf.dot(nface) > 0;
-      }
-    }
-    inverted[i] = !(agrees || nf.dot(ref) > 0);
+    inverted[i] = triangle_is_inverted(surface, out.points[f[0]], out.points[f[1]], out.points[f[2]], out.surface_points[f[0]],
+                                       out.surface_points[f[1]], out.surface_points[f[2]]);
   });
   return std::size_t(std::count(inverted.begin(), inverted.end(), 1));
+}
+
+// Stage 6 of 7, before the quality: the surface optimisation (optimize_surface_mesh()) when `mode` asks for
+// it, on every output or only on one with inverted triangles, to repair them
+template <typename AnisotropicMetric, typename Visitor>
+void optimize_output(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out,
+                     Surface_optimization mode, Visitor& vis, Remeshing_result& result, unsigned threads = 0)
+{
+  Stage_timer t(vis, Stage::SURFACE_OPTIMIZATION);
+  if(mode == Surface_optimization::ALWAYS ||
+     (mode == Surface_optimization::REPAIR && count_inverted_triangles(surface, out, threads) > 0))
+    result.surface_optimization = optimize_surface_mesh(surface, metric, out, defaults::surface_optimization_rounds, vis);
+  result.seconds[int(Stage::SURFACE_OPTIMIZATION)] = t.stop(vis);
 }
 
 // Stage 6: quality in the metric, then the checks (no inverted triangle, whose message ends with the
@@ -221,7 +216,9 @@ void measure_and_check_output(const Input_surface& surface, const AnisotropicMet
   result.inverted_triangles = count_inverted_triangles(surface, out, threads);
   if(result.inverted_triangles > 0)
     throw Convergence_failure("remesh(): the output has " + std::to_string(result.inverted_triangles) +
-                                  " inverted or degenerate triangles (G_min " + std::to_string(result.quality.G_min) + "): " + hint,
+                                  " inverted or degenerate triangles" +
+                                  (result.surface_optimization.ran ? " left after the surface optimisation" : "") + " (G_min " +
+                                  std::to_string(result.quality.G_min) + "): " + hint,
                               double(result.inverted_triangles));
   const Input_surface checked = check_output_topology(out, surface);
   result.hausdorff_distance = hausdorff_distance(surface, checked, threads);

@@ -1,0 +1,299 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_OPTIMIZE_SURFACE_OPTIMIZER_H
+#define ANISO_CONFORMAL_INTERNAL_OPTIMIZE_SURFACE_OPTIMIZER_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/Surface_point.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/optimize/triangle_orientation.h>
+#include <Aniso_conformal/internal/tensor.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+// The final optimisation of the output on the input surface, in the metric (optimize_surface_mesh()):
+// metric-Delaunay edge flips and vertex relocation along the surface on a CGAL::Surface_mesh holding the
+// connectivity, each operation accepted only when it makes the triangles it touches no worse by any
+// figure of the quality report (Local_score), or when it repairs inverted triangles.
+
+namespace Aniso_conformal {
+namespace internal {
+
+// the figures of one triangle in the metric, computed exactly as compute_mesh_quality() does (Q_T the
+// mean of the corners' square roots, in the same order), so that what the optimiser accepts is what the
+// report measures
+struct Triangle_figures {
+  double G = 0;               // 2 sqrt(3) S / (p h)
+  double smallest_angle = 0;  // degrees
+  double area = 0;            // in the metric
+  bool inverted = false;      // triangle_is_inverted()
+};
+
+inline Triangle_figures triangle_figures(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                                         const Eigen::Matrix3d& Qa, const Eigen::Matrix3d& Qb, const Eigen::Matrix3d& Qc)
+{
+  const double rad = 180.0 / 3.14159265358979323846;
+  const Eigen::Matrix3d QT = (Qa + Qb + Qc) / 3.0;
+  const std::array<Eigen::Vector3d, 3> p = {{QT * a, QT * b, QT * c}};
+  std::array<double, 3> l;
+  for(int k = 0; k < 3; ++k) l[k] = (p[(k + 1) % 3] - p[k]).norm();
+  Triangle_figures t;
+  t.area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+  const double half_perimeter = 0.5 * (l[0] + l[1] + l[2]);
+  const double h = std::max({l[0], l[1], l[2]});
+  t.G = (half_perimeter > 0 && h > 0) ? 2 * std::sqrt(3.0) * t.area / (half_perimeter * h) : 0.0;
+  t.smallest_angle = 1e300;
+  for(int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+    t.smallest_angle = std::min(t.smallest_angle, std::atan2(u.cross(v).norm(), u.dot(v)) * rad);
+  }
+  return t;
+}
+
+// the figures of the quality report over a few triangles (those an operation replaces or moves)
+struct Local_score {
+  std::size_t inverted = 0, below_30 = 0;
+  double G_min = 1e300, angle_min = 1e300, G_sum = 0, angle_sum = 0;
+  void add(const Triangle_figures& t)
+  {
+    inverted += t.inverted ? 1 : 0;
+    below_30 += t.smallest_angle < 30 ? 1 : 0;
+    G_min = std::min(G_min, t.G);
+    angle_min = std::min(angle_min, t.smallest_angle);
+    G_sum += t.G;
+    angle_sum += t.smallest_angle;
+  }
+};
+
+// `candidate` may replace `current`: it has fewer inverted triangles, or as many and none of G_min,
+// theta_min, theta_avg, %<30 worse and a larger sum of G. Since every operation replaces a fixed number
+// of triangles, none of the report's G_min, G_avg, theta_min, theta_avg, %<30 can then get worse (up to
+// the rounding of the report's sums), and G_sum strictly increasing rules out cycles.
+inline bool improves(const Local_score& candidate, const Local_score& current)
+{
+  if(candidate.inverted != current.inverted) return candidate.inverted < current.inverted;
+  return candidate.G_min >= current.G_min && candidate.angle_min >= current.angle_min &&
+         candidate.below_30 <= current.below_30 && candidate.angle_sum >= current.angle_sum &&
+         candidate.G_sum > current.G_sum * (1 + 1e-12);
+}
+
+// the optimiser's state: the mesh's connectivity in a Surface_mesh whose vertex i is output vertex i,
+// and per vertex its position, its point on the input, the square root of the metric there and whether
+// it is fixed (on the output's boundary)
+template <typename AnisotropicMetric>
+class Surface_optimizer {
+public:
+  typedef CGAL::Surface_mesh<CGAL::Simple_cartesian<double>::Point_3> Mesh;
+  typedef Mesh::Vertex_index V;
+  typedef Mesh::Halfedge_index H;
+  typedef Mesh::Face_index F;
+
+  Surface_optimizer(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out)
+    : m_surface(surface), m_metric(metric), m_out(out)
+  {}
+
+  // builds the connectivity and the metric at the vertices; `false` if the faces are not a 2-manifold
+  // (the output check of stage 6 then refuses the output as it would have without this stage)
+  bool build()
+  {
+    const std::size_t n = m_out.points.size();
+    if(m_out.surface_points.size() != n) throw Internal_error("surface optimisation: one surface point per vertex is needed");
+    for(std::size_t i = 0; i < n; ++i) m_mesh.add_vertex();
+    for(const auto& f : m_out.faces) {
+      for(int k = 0; k < 3; ++k)
+        if(f[k] >= n) throw Internal_error("surface optimisation: a face refers to a vertex out of range");
+      if(m_mesh.add_face(V(Mesh::size_type(f[0])), V(Mesh::size_type(f[1])), V(Mesh::size_type(f[2]))) == Mesh::null_face())
+        return false;
+    }
+    m_Q.resize(n);
+    // serial: a user's metric model need not be safe for concurrent calls
+    for(std::size_t i = 0; i < n; ++i) m_Q[i] = symmetric_sqrt(m_metric.tensor(m_out.surface_points[i]));
+    m_fixed.assign(n, 0);
+    for(V v : m_mesh.vertices())
+      if(m_mesh.is_isolated(v) || m_mesh.is_border(v, false)) m_fixed[v.idx()] = 1;
+    return true;
+  }
+
+  const std::vector<Eigen::Matrix3d>& metric_square_roots() const { return m_Q; }
+  std::size_t fixed_vertices() const { return std::size_t(std::count(m_fixed.begin(), m_fixed.end(), 1)); }
+
+  // one pass of metric-Delaunay flips over every edge; returns the number of flips
+  std::size_t flip_pass()
+  {
+    std::size_t flips = 0;
+    const double pi = 3.14159265358979323846;
+    for(auto e : m_mesh.edges()) {
+      if(m_mesh.is_border(e)) continue;
+      const H h = m_mesh.halfedge(e);
+      const V a = m_mesh.source(h), b = m_mesh.target(h), c = m_mesh.target(m_mesh.next(h)),
+              d = m_mesh.target(m_mesh.next(m_mesh.opposite(h)));
+      if(c == d || m_mesh.halfedge(c, d) != Mesh::null_halfedge()) continue;  // the flip would duplicate an edge
+      // faces (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c)
+      Local_score before, after;
+      before.add(figures(a, b, c));
+      before.add(figures(b, a, d));
+      after.add(figures(a, d, c));
+      after.add(figures(d, b, c));
+      const bool repairs = after.inverted < before.inverted;
+      if(!repairs) {
+        // the metric-Delaunay test, in the mean metric of the four corners
+        const Eigen::Matrix3d Qq = (Q(a) + Q(b) + Q(c) + Q(d)) / 4.0;
+        auto angle_at = [&](V x) {
+          const Eigen::Vector3d u = Qq * (P(a) - P(x)), v = Qq * (P(b) - P(x));
+          return std::atan2(u.cross(v).norm(), u.dot(v));
+        };
+        if(!(angle_at(c) + angle_at(d) > pi * (1 + 1e-10))) continue;
+        if(!improves(after, before)) continue;
+      }
+      if(!keeps_the_shape(a, b, c, d)) continue;
+      CGAL::Euler::flip_edge(h, m_mesh);
+      ++flips;
+    }
+    m_flipped = m_flipped || flips > 0;
+    return flips;
+  }
+
+  // one pass of relocation of every free vertex toward the metric-weighted centroid of its one-ring,
+  // projected onto the input; returns the number of vertices moved
+  std::size_t relocation_pass()
+  {
+    std::size_t moved = 0;
+    std::vector<F> ring;
+    for(V v : m_mesh.vertices()) {
+      const std::size_t i = v.idx();
+      if(m_fixed[i]) continue;
+      ring.clear();
+      for(H h : CGAL::halfedges_around_target(m_mesh.halfedge(v), m_mesh))
+        if(!m_mesh.is_border(h)) ring.push_back(m_mesh.face(h));
+      const Local_score before = ring_score(ring);
+      // the centroid of the ring's triangles weighted by their area in the metric, and the plain mean of
+      // the neighbours as a fallback
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
+      double weight = 0;
+      std::size_t neighbours = 0;
+      for(F f : ring) {
+        const auto t = corners(f);
+        const double w = figures(t[0], t[1], t[2]).area;
+        centroid += w * (P(t[0]) + P(t[1]) + P(t[2])) / 3.0;
+        weight += w;
+      }
+      for(V u : CGAL::vertices_around_target(m_mesh.halfedge(v), m_mesh)) {
+        mean += P(u);
+        ++neighbours;
+      }
+      std::vector<Eigen::Vector3d> targets;
+      const Eigen::Vector3d p = P(v);
+      if(weight > 0 && centroid.allFinite())
+        for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (centroid / weight - p));
+      if(neighbours > 0) targets.push_back(mean / double(neighbours));
+      const Surface_point old_sp = m_out.surface_points[i];
+      const Eigen::Matrix3d old_Q = m_Q[i];
+      const Eigen::Vector3d old_normal = interpolated_normal(old_sp);
+      for(const Eigen::Vector3d& y : targets) {
+        if(!y.allFinite()) continue;
+        Surface_point sp = m_surface.project(y);
+        if(m_surface.is_planar()) sp.position.z() = 0;
+        // the closest point on another sheet of a thin part is no move along the surface
+        if(!m_surface.is_planar() && !(interpolated_normal(sp).dot(old_normal) > 0)) continue;
+        m_out.surface_points[i] = sp;
+        m_out.points[i] = sp.position;
+        m_Q[i] = symmetric_sqrt(m_metric.tensor(sp));
+        if(improves(ring_score(ring), before)) {
+          ++moved;
+          break;
+        }
+        m_out.surface_points[i] = old_sp;
+        m_out.points[i] = old_sp.position;
+        m_Q[i] = old_Q;
+      }
+    }
+    return moved;
+  }
+
+  // writes the faces back into the output (positions and surface points are updated in place); the faces
+  // are left untouched when no edge was flipped
+  void write_faces()
+  {
+    if(!m_flipped) return;
+    m_out.faces.clear();
+    for(F f : m_mesh.faces()) {
+      const auto t = corners(f);
+      m_out.faces.push_back({{std::size_t(t[0].idx()), std::size_t(t[1].idx()), std::size_t(t[2].idx())}});
+    }
+  }
+
+private:
+  const Eigen::Vector3d& P(V v) const { return m_out.points[v.idx()]; }
+  const Eigen::Matrix3d& Q(V v) const { return m_Q[v.idx()]; }
+
+  std::array<V, 3> corners(F f) const
+  {
+    const H h = m_mesh.halfedge(f);
+    return {{m_mesh.source(h), m_mesh.target(h), m_mesh.target(m_mesh.next(h))}};
+  }
+
+  Triangle_figures figures(V a, V b, V c) const
+  {
+    Triangle_figures t = triangle_figures(P(a), P(b), P(c), Q(a), Q(b), Q(c));
+    t.inverted = triangle_is_inverted(m_surface, P(a), P(b), P(c), m_out.surface_points[a.idx()],
+                                      m_out.surface_points[b.idx()], m_out.surface_points[c.idx()]);
+    return t;
+  }
+
+  Local_score ring_score(const std::vector<F>& ring) const
+  {
+    Local_score s;
+    for(F f : ring) {
+      const auto t = corners(f);
+      s.add(figures(t[0], t[1], t[2]));
+    }
+    return s;
+  }
+
+  Eigen::Vector3d interpolated_normal(const Surface_point& sp) const
+  {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for(int j = 0; j < 3; ++j) n += sp.barycentric[j] * m_surface.vertex_normals()[sp.vertices[j]];
+    return n;
+  }
+
+  // the new diagonal (c, d) stays as close to the input as the old one (a, b), within 5 % of its length
+  // (a flip across a ridge would cut through the solid), and the two new triangles do not fold onto
+  // each other
+  bool keeps_the_shape(V a, V b, V c, V d) const
+  {
+    const Eigen::Vector3d n1 = (P(d) - P(a)).cross(P(c) - P(a)), n2 = (P(b) - P(d)).cross(P(c) - P(d));
+    if(!(n1.dot(n2) > 0)) return false;
+    if(m_surface.is_planar()) return true;
+    const Eigen::Vector3d m_old = 0.5 * (P(a) + P(b)), m_new = 0.5 * (P(c) + P(d));
+    const double d_old = (m_surface.project(m_old).position - m_old).norm();
+    const double d_new = (m_surface.project(m_new).position - m_new).norm();
+    return d_new <= std::max(2 * d_old, 0.05 * (P(c) - P(d)).norm());
+  }
+
+  const Input_surface& m_surface;
+  const AnisotropicMetric& m_metric;
+  Remeshed_surface& m_out;
+  Mesh m_mesh;
+  std::vector<Eigen::Matrix3d> m_Q;
+  std::vector<char> m_fixed;
+  bool m_flipped = false;
+};
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_OPTIMIZE_SURFACE_OPTIMIZER_H

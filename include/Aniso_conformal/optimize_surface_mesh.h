@@ -1,0 +1,148 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_OPTIMIZE_SURFACE_MESH_H
+#define ANISO_CONFORMAL_OPTIMIZE_SURFACE_MESH_H
+
+#include <Aniso_conformal/Default_visitor.h>
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Stage.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/optimize/surface_optimizer.h>
+#include <Aniso_conformal/mesh_quality.h>
+
+#include <cstddef>
+#include <string>
+
+/// \file optimize_surface_mesh.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * what the surface optimisation (`optimize_surface_mesh()`, stage `Stage::SURFACE_OPTIMIZATION`) did,
+ * with the quality in the metric before and after it (the "after" figures are those of the final report)
+ */
+struct Surface_optimization_report {
+  bool ran = false;                   ///< `false` when the stage was off or had nothing to repair
+  std::size_t rounds = 0;             ///< rounds made (flip passes then one relocation pass each)
+  std::size_t flips = 0;              ///< metric-Delaunay (or repairing) edge flips
+  std::size_t relocations = 0;        ///< accepted vertex moves along the input
+  std::size_t fixed_vertices = 0;     ///< boundary vertices, never moved
+  std::size_t inverted_before = 0;    ///< inverted or degenerate triangles before the stage
+  std::size_t inverted_after = 0;     ///< the same after it
+  double G_min_before = 0;            ///< quality in the metric before the stage (see `Quality_report`)
+  double G_avg_before = 0;            ///< mean G before
+  double theta_min_before = 0;        ///< smallest angle before, degrees
+  double percent_below_30_before = 0; ///< %<30 before
+  double G_min_after = 0;             ///< the same after the stage
+  double G_avg_after = 0;             ///< mean G after
+  double theta_min_after = 0;         ///< smallest angle after, degrees
+  double percent_below_30_after = 0;  ///< %<30 after
+};
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * improves the remeshed surface `mesh` on the input `surface`, in `metric` (the pipeline's stage
+ * `Stage::SURFACE_OPTIMIZATION`, between the dual mesh and the quality measure): up to `max_rounds`
+ * rounds, each of
+ * - passes (at most 4) of *metric-Delaunay edge flips*: an interior edge is flipped when the two angles
+ *   opposite to it, measured in the mean metric of the four corners, sum to more than pi (the Delaunay
+ *   criterion in the metric, as in anisotropic Delaunay meshing, e.g. Labelle and Shewchuk 2003), the flip
+ *   makes the two triangles no worse (below) and neither folds (their normals agree with the input's, as
+ *   `remesh()`'s output check measures them, and with each other) nor leaves the input (the new
+ *   diagonal's midpoint stays within 5 % of its length, or twice the old diagonal's distance, of the
+ *   input);
+ * - one pass of *vertex relocation along the surface*: each interior vertex moves toward the centroid of
+ *   its one-ring's triangles weighted by their area in the metric (steps 1, 1/2, 1/4 of the way, then
+ *   the plain mean of its neighbours), projected back onto the input with its AABB tree
+ *   (`Input_surface::project()`, CGAL's `AABB_tree`).
+ *
+ * An operation is accepted only if it lowers the number of inverted triangles among those it changes,
+ * or keeps it and makes none of their G_min, theta_min, theta_avg, %<30 worse while raising their sum of
+ * G (the quality of `compute_mesh_quality()`, computed the same way). So the stage never makes the
+ * report's G_min, G_avg, theta_min, theta_avg or %<30 worse (up to rounding in the report's sums), and it
+ * repairs inverted triangles where a flip or a move can. A round that changes nothing ends the stage.
+ *
+ * Kept: the number of vertices, the topology (flips keep the genus and the boundary; an edge already
+ * present is never created), the boundary vertices (fixed), every vertex on the input (moved vertices get
+ * their new `Surface_point`, planar ones keep z = 0). Faces are rewritten only if an edge was flipped
+ * (the same triangles in the same order otherwise). Time O(rounds * (E + V log F)), serial (a user's
+ * metric model need not be safe for concurrent calls).
+ *
+ * \tparam AnisotropicMetric a model of `AnisotropicMetric`
+ * \tparam Visitor a model of `AnisoConformalVisitor`: `on_iteration(Stage::SURFACE_OPTIMIZATION, round,
+ *         max_rounds, operations made in the round)`
+ * \param surface the input surface the output lies on (never modified)
+ * \param metric the metric
+ * \param mesh the output of stage 5 (`extract_dual_mesh()`): positions, triangles, points on the input;
+ *        modified in place
+ * \param max_rounds bound on the rounds (0: nothing is done)
+ * \returns what was done, with the quality before and after
+ * \throws Internal_error if `mesh` is inconsistent (a face index out of range, fewer surface points than
+ *         vertices); a `mesh` whose triangles are not a 2-manifold is left unchanged (`ran` is `false`)
+ * \throws Cancelled if the visitor asked to stop (`mesh` is then partly optimised, still valid)
+ */
+template <typename AnisotropicMetric, typename Visitor>
+Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, const AnisotropicMetric& metric,
+                                                  Remeshed_surface& mesh, std::size_t max_rounds, Visitor& vis)
+{
+  Surface_optimization_report report;
+  if(mesh.faces.empty() || max_rounds == 0) return report;
+  internal::Surface_optimizer<AnisotropicMetric> opt(surface, metric, mesh);
+  if(!opt.build()) return report;
+  report.ran = true;
+  report.fixed_vertices = opt.fixed_vertices();
+  auto count_inverted = [&]() {
+    std::size_t n = 0;
+    for(const auto& f : mesh.faces)
+      n += internal::triangle_is_inverted(surface, mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]],
+                                          mesh.surface_points[f[0]], mesh.surface_points[f[1]], mesh.surface_points[f[2]])
+             ? 1
+             : 0;
+    return n;
+  };
+  const Quality_report before = compute_mesh_quality(mesh.points, mesh.faces, opt.metric_square_roots(), 1);
+  report.inverted_before = count_inverted();
+  report.G_min_before = before.G_min;
+  report.G_avg_before = before.G_avg;
+  report.theta_min_before = before.theta_min;
+  report.percent_below_30_before = before.percent_below_30;
+  for(std::size_t round = 1; round <= max_rounds; ++round) {
+    std::size_t flips = 0;
+    for(int pass = 0; pass < 4; ++pass) {
+      const std::size_t f = opt.flip_pass();
+      flips += f;
+      if(f == 0) break;
+    }
+    const std::size_t moved = opt.relocation_pass();
+    report.flips += flips;
+    report.relocations += moved;
+    report.rounds = round;
+    opt.write_faces();
+    if(!vis.on_iteration(Stage::SURFACE_OPTIMIZATION, round, max_rounds, double(flips + moved)))
+      throw Cancelled("cancelled by the visitor during the surface optimisation");
+    if(flips + moved == 0) break;
+  }
+  const Quality_report after = compute_mesh_quality(mesh.points, mesh.faces, opt.metric_square_roots(), 1);
+  report.inverted_after = count_inverted();
+  report.G_min_after = after.G_min;
+  report.G_avg_after = after.G_avg;
+  report.theta_min_after = after.theta_min;
+  report.percent_below_30_after = after.percent_below_30;
+  return report;
+}
+
+/// `optimize_surface_mesh()` without a visitor
+template <typename AnisotropicMetric>
+Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, const AnisotropicMetric& metric,
+                                                  Remeshed_surface& mesh, std::size_t max_rounds = 5)
+{
+  Default_visitor vis;
+  return optimize_surface_mesh(surface, metric, mesh, max_rounds, vis);
+}
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_OPTIMIZE_SURFACE_MESH_H
