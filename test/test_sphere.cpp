@@ -579,6 +579,38 @@ BOOST_AUTO_TEST_CASE(thin_closed_pillow_remeshes_at_few_and_many_vertices)
   }
 }
 
+BOOST_AUTO_TEST_CASE(coarse_blob_is_repaired_by_the_surface_optimization)
+{
+  // CGAL's blob-closed (140 vertices) to 2000: the dual mesh mapped back has an inverted triangle, which
+  // was refused; the surface optimisation (on by default to repair) flips and moves it right
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/blob-closed.off");
+  const std::size_t n = 2000;
+  AC::Remeshing_result r;
+  std::string refused;
+  try {
+    remesh_sphere(s, AC::Uniform_metric(), r,
+                  AC::parameters::number_of_vertices(n).surface_optimization(AC::Surface_optimization::OFF));
+  } catch(const AC::Convergence_failure& e) {
+    refused = e.what();
+  }
+  BOOST_TEST_MESSAGE("blob-closed without the surface optimisation: " << refused);
+  BOOST_TEST(refused.find("inverted") != std::string::npos);
+  const AC::Remeshed_surface out = remesh_sphere(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+  check_sphere_output(s, out, n);
+  const AC::Surface_optimization_report& so = r.surface_optimization;
+  BOOST_TEST_MESSAGE("blob-closed: inverted " << so.inverted_before << " -> " << so.inverted_after << ", G_avg " << so.G_avg_before
+                     << " -> " << so.G_avg_after << ", theta_min " << so.theta_min_before << " -> " << so.theta_min_after << ", "
+                     << so.rounds << " rounds, " << r.seconds[int(AC::Stage::SURFACE_OPTIMIZATION)] << " s");
+  BOOST_TEST(so.ran);
+  BOOST_TEST(so.inverted_before > 0u);
+  BOOST_TEST(so.inverted_after == 0u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(so.G_avg_after == r.quality.G_avg);
+  BOOST_TEST(r.quality.G_avg > 0.85);
+  BOOST_TEST(r.quality.theta_min > so.theta_min_before);
+  BOOST_TEST(r.hausdorff_distance_relative < 0.02);
+}
+
 BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)
 {
   // the cow's legs and tail: the conformal map to the sphere shrinks them below double precision

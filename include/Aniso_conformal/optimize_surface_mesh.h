@@ -45,25 +45,28 @@ struct Surface_optimization_report {
 /*!
  * \ingroup PkgAnisoConformalStages
  * improves the remeshed surface `mesh` on the input `surface`, in `metric` (the pipeline's stage
- * `Stage::SURFACE_OPTIMIZATION`, between the dual mesh and the quality measure): up to `max_rounds`
- * rounds, each of
+ * `Stage::SURFACE_OPTIMIZATION`, between the dual mesh and the quality measure): `max_rounds` rounds,
+ * then, while inverted triangles are left and a round still changes something, up to `3 max_rounds`
+ * more, each of
  * - passes (at most 4) of *metric-Delaunay edge flips*: an interior edge is flipped when the two angles
  *   opposite to it, measured in the mean metric of the four corners, sum to more than pi (the Delaunay
  *   criterion in the metric, as in anisotropic Delaunay meshing, e.g. Labelle and Shewchuk 2003), the flip
  *   makes the two triangles no worse (below) and neither folds (their normals agree with the input's, as
  *   `remesh()`'s output check measures them, and with each other) nor leaves the input (the new
  *   diagonal's midpoint stays within 5 % of its length, or twice the old diagonal's distance, of the
- *   input);
+ *   input; this last test is waived for a flip that repairs an inverted triangle);
  * - one pass of *vertex relocation along the surface*: each interior vertex moves toward the centroid of
  *   its one-ring's triangles weighted by their area in the metric (steps 1, 1/2, 1/4 of the way, then
- *   the plain mean of its neighbours), projected back onto the input with its AABB tree
+ *   the plain mean of its neighbours; a vertex of an inverted triangle also tries half way to that mean
+ *   and 1/2 and 1/4 of the way to each neighbour), projected back onto the input with its AABB tree
  *   (`Input_surface::project()`, CGAL's `AABB_tree`).
  *
  * An operation is accepted only if it lowers the number of inverted triangles among those it changes,
  * or keeps it and makes none of their G_min, theta_min, theta_avg, %<30 worse while raising their sum of
- * G (the quality of `compute_mesh_quality()`, computed the same way). So the stage never makes the
- * report's G_min, G_avg, theta_min, theta_avg or %<30 worse (up to rounding in the report's sums), and it
- * repairs inverted triangles where a flip or a move can. A round that changes nothing ends the stage.
+ * G (the quality of `compute_mesh_quality()`, computed the same way). So on an output without inverted
+ * triangles the stage never makes the report's G_min, G_avg, theta_min, theta_avg or %<30 worse (up to
+ * rounding in the report's sums); on one with inverted triangles it repairs them where a flip or a move
+ * can, and a repair may lower those figures. A round that changes nothing ends the stage.
  *
  * Kept: the number of vertices, the topology (flips keep the genus and the boundary; an edge already
  * present is never created), the boundary vertices (fixed), every vertex on the input (moved vertices get
@@ -73,7 +76,7 @@ struct Surface_optimization_report {
  *
  * \tparam AnisotropicMetric a model of `AnisotropicMetric`
  * \tparam Visitor a model of `AnisoConformalVisitor`: `on_iteration(Stage::SURFACE_OPTIMIZATION, round,
- *         max_rounds, operations made in the round)`
+ *         4 max_rounds, operations made in the round)`
  * \param surface the input surface the output lies on (never modified)
  * \param metric the metric
  * \param mesh the output of stage 5 (`extract_dual_mesh()`): positions, triangles, points on the input;
@@ -109,7 +112,11 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
   report.G_avg_before = before.G_avg;
   report.theta_min_before = before.theta_min;
   report.percent_below_30_before = before.percent_below_30;
-  for(std::size_t round = 1; round <= max_rounds; ++round) {
+  // the rounds asked for, and while inverted triangles are left and the rounds still change something,
+  // up to three times as many more
+  const std::size_t bound = 4 * max_rounds;
+  std::size_t inverted = report.inverted_before;
+  for(std::size_t round = 1; round <= bound && (round <= max_rounds || inverted > 0); ++round) {
     std::size_t flips = 0;
     for(int pass = 0; pass < 4; ++pass) {
       const std::size_t f = opt.flip_pass();
@@ -121,9 +128,10 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
     report.relocations += moved;
     report.rounds = round;
     opt.write_faces();
-    if(!vis.on_iteration(Stage::SURFACE_OPTIMIZATION, round, max_rounds, double(flips + moved)))
+    if(!vis.on_iteration(Stage::SURFACE_OPTIMIZATION, round, bound, double(flips + moved)))
       throw Cancelled("cancelled by the visitor during the surface optimisation");
     if(flips + moved == 0) break;
+    if(round >= max_rounds) inverted = count_inverted();
   }
   const Quality_report after = compute_mesh_quality(mesh.points, mesh.faces, opt.metric_square_roots(), 1);
   report.inverted_after = count_inverted();

@@ -158,7 +158,7 @@ public:
         if(!(angle_at(c) + angle_at(d) > pi * (1 + 1e-10))) continue;
         if(!improves(after, before)) continue;
       }
-      if(!keeps_the_shape(a, b, c, d)) continue;
+      if(!keeps_the_shape(a, b, c, d, repairs)) continue;
       CGAL::Euler::flip_edge(h, m_mesh);
       ++flips;
     }
@@ -199,6 +199,12 @@ public:
       if(weight > 0 && centroid.allFinite())
         for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (centroid / weight - p));
       if(neighbours > 0) targets.push_back(mean / double(neighbours));
+      if(before.inverted > 0) {
+        // a folded ring: also half way to the mean and toward each neighbour
+        if(neighbours > 0) targets.push_back(0.5 * (p + mean / double(neighbours)));
+        for(V u : CGAL::vertices_around_target(m_mesh.halfedge(v), m_mesh))
+          for(double step : {0.5, 0.25}) targets.push_back(p + step * (P(u) - p));
+      }
       const Surface_point old_sp = m_out.surface_points[i];
       const Eigen::Matrix3d old_Q = m_Q[i];
       const Eigen::Vector3d old_normal = interpolated_normal(old_sp);
@@ -270,14 +276,14 @@ private:
     return n;
   }
 
+  // the two new triangles do not fold onto each other and, unless the flip repairs an inverted triangle,
   // the new diagonal (c, d) stays as close to the input as the old one (a, b), within 5 % of its length
-  // (a flip across a ridge would cut through the solid), and the two new triangles do not fold onto
-  // each other
-  bool keeps_the_shape(V a, V b, V c, V d) const
+  // (a flip across a ridge would cut through the solid)
+  bool keeps_the_shape(V a, V b, V c, V d, bool repairs) const
   {
     const Eigen::Vector3d n1 = (P(d) - P(a)).cross(P(c) - P(a)), n2 = (P(b) - P(d)).cross(P(c) - P(d));
     if(!(n1.dot(n2) > 0)) return false;
-    if(m_surface.is_planar()) return true;
+    if(m_surface.is_planar() || repairs) return true;
     const Eigen::Vector3d m_old = 0.5 * (P(a) + P(b)), m_new = 0.5 * (P(c) + P(d));
     const double d_old = (m_surface.project(m_old).position - m_old).norm();
     const double d_new = (m_surface.project(m_new).position - m_new).norm();
