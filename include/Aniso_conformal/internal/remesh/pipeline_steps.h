@@ -174,10 +174,16 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
   return std::max(to_output, to_input);
 }
 
-// the output triangles whose normal disagrees with the input's normals at their corners (the +z axis
-// for a planar input)
+// the output triangles whose normal disagrees with the input's normals at their corners (for a planar
+// input, the side of z = 0 its faces face: +z when counter-clockwise seen from +z, -z when clockwise)
 inline std::size_t count_inverted_triangles(const Input_surface& surface, const Remeshed_surface& out, unsigned threads = 0)
 {
+  double planar_side = 0;  // sign of the input's signed area seen from +z (planar input only)
+  if(surface.is_planar())
+    for(const auto& t : surface.faces()) {
+      const Eigen::Vector3d &a = surface.points()[t[0]], &b = surface.points()[t[1]], &c = surface.points()[t[2]];
+      planar_side += (b - a).cross(c - a).z();
+    }
   // A triangle is inverted when its normal disagrees (dot <= 0) with every reference normal of the input
   // around it: the vertex normals interpolated at its corners, and the normal of each input face that
   // holds one of its corners. On a smooth input these agree; on a coarse faceted one (a 12-triangle cube,
@@ -188,7 +194,7 @@ inline std::size_t count_inverted_triangles(const Input_surface& surface, const 
     const auto& f = out.faces[i];
     const Eigen::Vector3d nf = (out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]);
     if(surface.is_planar()) {
-      inverted[i] = !(nf.z() > 0);
+      inverted[i] = !(nf.z() * planar_side > 0);  // the layout keeps the input's orientation, clockwise or not
       return;
     }
     Eigen::Vector3d ref = Eigen::Vector3d::Zero();
