@@ -23,6 +23,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include "domain_concept_checks.h"
@@ -165,6 +166,28 @@ BOOST_AUTO_TEST_CASE_TEMPLATE(bgl_entry_point_on_mesh_types, Mesh, Mesh_types)
   bool unchanged = num_vertices(in) == before.size();
   for(auto v : vertices(in)) unchanged = unchanged && get(CGAL::vertex_point, in, v) == before[i++];
   BOOST_TEST(unchanged);
+}
+
+// A planar input clockwise seen from +z is remeshed as it is (the BGL entry point does not repair): the
+// plane's layout keeps the input's orientation, so the output is clockwise too, with no triangle judged
+// inverted (each is judged against the side the input faces), and the square is covered exactly.
+BOOST_AUTO_TEST_CASE(clockwise_planar_input_is_remeshed_as_it_is)
+{
+  const AC::Input_surface bg = AC::make_square_background(AC::Uniform_metric(), 200);
+  CGAL::Surface_mesh<K::Point_3> in, out;
+  fill_mesh(bg, in);
+  CGAL::Polygon_mesh_processing::reverse_face_orientations(in);
+  const AC::Remeshing_result r = remesh_plane(in, AC::Uniform_metric(), out, AC::parameters::number_of_vertices(std::size_t(200)));
+  BOOST_TEST(num_vertices(out) == 200u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  double area2 = 0;  // twice the signed area seen from +z
+  for(auto f : faces(out)) {
+    std::vector<K::Point_3> p;
+    for(auto v : vertices_around_face(halfedge(f, out), out)) p.push_back(out.point(v));
+    area2 += (p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) - (p[1].y() - p[0].y()) * (p[2].x() - p[0].x());
+  }
+  BOOST_TEST(std::abs(area2 / 2 + 1.0) <= 1e-9);  // clockwise: the unit square's area, negative
+  BOOST_TEST(r.quality.G_avg >= 0.85);
 }
 
 BOOST_AUTO_TEST_CASE_TEMPLATE(cancelling_visitor_leaves_output_unchanged, Mesh, Mesh_types)

@@ -673,7 +673,7 @@ std::size_t inverted_triangles(const AC::Input_surface& input, const AC::Remeshe
   std::size_t n = 0;
   for(const auto& f : out.faces)
     n += AC::internal::triangle_is_inverted(input, out.points[f[0]], out.points[f[1]], out.points[f[2]], out.surface_points[f[0]],
-                                            out.surface_points[f[1]], out.surface_points[f[2]]);
+                                            out.surface_points[f[1]], out.surface_points[f[2]], AC::internal::planar_side(input));
   return n;
 }
 

@@ -199,19 +199,6 @@ int main_impl(int argc, char** argv)
   AC::Repair_report repairs;
   const AC::Input_surface surface =
     AC::IO::read_triangle_mesh(o.input, repairs, o.no_repair ? AC::Repair_options::none() : AC::Repair_options());
-  if(o.no_repair && surface.is_planar()) {
-    // the planar remesher needs a counter-clockwise input: say so rather than let every output triangle
-    // come out inverted (the repair, off here, reverses it and turns the output back)
-    double area2 = 0;
-    for(const auto& t : surface.faces()) {
-      const Eigen::Vector3d &a = surface.points()[t[0]], &b = surface.points()[t[1]], &c = surface.points()[t[2]];
-      area2 += (b - a).cross(c - a).z();
-    }
-    if(area2 < 0)
-      throw AC::Remeshing_failure("the input lies in the plane z = 0 and its faces are clockwise seen from +z; the planar "
-                                  "remesher needs them counter-clockwise: drop --no-repair (the input is then remeshed "
-                                  "counter-clockwise and the output turned back clockwise), or reverse the faces");
-  }
   // the metric file has a row per vertex of --input: those of the vertices kept by the repairs are used
   if(!o.metric_file.empty())
     return run(o, surface, AC::IO::read_metric_file(o.metric_file, repairs), 0.0, o.input, &repairs);

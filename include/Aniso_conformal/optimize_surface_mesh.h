@@ -101,7 +101,8 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
     std::size_t n = 0;
     for(const auto& f : mesh.faces)
       n += internal::triangle_is_inverted(surface, mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]],
-                                          mesh.surface_points[f[0]], mesh.surface_points[f[1]], mesh.surface_points[f[2]])
+                                          mesh.surface_points[f[0]], mesh.surface_points[f[1]], mesh.surface_points[f[2]],
+                                          opt.side())
              ? 1
              : 0;
     return n;

@@ -71,7 +71,8 @@ struct Repair_report {
   /// `true` if the faces of a closed surface, consistently oriented, pointed inward and were reversed
   bool reversed_to_outward = false;
   /// `true` if the input lies in the plane z = 0 and is oriented clockwise seen from +z: the repaired
-  /// surface is its counter-clockwise copy, which the planar remesher needs, and
+  /// surface is its counter-clockwise copy (the convention of 2D meshes; `remesh()` also takes a clockwise
+  /// one as it is, since the plane's layout keeps the input's orientation), and
   /// `restore_input_orientation()` reverses the output's triangles back (not counted in `faces_reoriented`)
   bool planar_clockwise = false;
   /// for each input point, its vertex in the repaired surface (welded points share one), or `dropped`;

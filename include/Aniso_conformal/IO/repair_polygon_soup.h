@@ -149,7 +149,7 @@ inline Repair_report repair_polygon_soup(std::vector<Eigen::Vector3d>& points, s
  * 4. **orient**: the faces are oriented consistently (`orient_polygon_soup()`); an open surface keeps the
  *    orientation of the majority of its faces, a closed one (one component, free of self-intersections)
  *    is oriented outward (`is_outward_oriented()`, then all faces reversed if not); an input in the
- *    plane z = 0 that is clockwise seen from +z is reversed (`Repair_report::planar_clockwise`: the planar remesher works counter-clockwise, and
+ *    plane z = 0 that is clockwise seen from +z is reversed (`Repair_report::planar_clockwise`: the convention of 2D meshes, though `remesh()` takes either, and
  *    `restore_input_orientation()` turns its output back).
  *
  * What is not a repair is refused, with the index the input gives it (`Invalid_input`): an index out of

@@ -102,7 +102,7 @@ public:
   typedef Mesh::Face_index F;
 
   Surface_optimizer(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out)
-    : m_surface(surface), m_metric(metric), m_out(out)
+    : m_surface(surface), m_metric(metric), m_out(out), m_side(planar_side(surface))
   {}
 
   // builds the connectivity and the metric at the vertices; `false` if the faces are not a 2-manifold
@@ -129,6 +129,7 @@ public:
 
   const std::vector<Eigen::Matrix3d>& metric_square_roots() const { return m_Q; }
   std::size_t fixed_vertices() const { return std::size_t(std::count(m_fixed.begin(), m_fixed.end(), 1)); }
+  double side() const { return m_side; }
 
   // one pass of metric-Delaunay flips over every edge; returns the number of flips
   std::size_t flip_pass()
@@ -255,7 +256,7 @@ private:
   {
     Triangle_figures t = triangle_figures(P(a), P(b), P(c), Q(a), Q(b), Q(c));
     t.inverted = triangle_is_inverted(m_surface, P(a), P(b), P(c), m_out.surface_points[a.idx()],
-                                      m_out.surface_points[b.idx()], m_out.surface_points[c.idx()]);
+                                      m_out.surface_points[b.idx()], m_out.surface_points[c.idx()], m_side);
     return t;
   }
 
@@ -293,6 +294,7 @@ private:
   const Input_surface& m_surface;
   const AnisotropicMetric& m_metric;
   Remeshed_surface& m_out;
+  double m_side;  // planar_side(m_surface)
   Mesh m_mesh;
   std::vector<Eigen::Matrix3d> m_Q;
   std::vector<char> m_fixed;

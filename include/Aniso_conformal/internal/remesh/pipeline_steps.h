@@ -176,15 +176,17 @@ inline double hausdorff_distance(const Input_surface& input, const Input_surface
   return std::max(to_output, to_input);
 }
 
-// the output triangles whose normal disagrees with the input's normals at their corners (the +z axis
-// for a planar input): triangle_is_inverted()
+// the output triangles whose normal disagrees with the input's normals at their corners (for a planar
+// input, the side of z = 0 its faces face: +z when counter-clockwise seen from +z, -z when clockwise):
+// triangle_is_inverted()
 inline std::size_t count_inverted_triangles(const Input_surface& surface, const Remeshed_surface& out, unsigned threads = 0)
 {
+  const double side = planar_side(surface);
   std::vector<char> inverted(out.faces.size(), 0);
   parallel_for(out.faces.size(), threads, [&](std::size_t i) {
     const auto& f = out.faces[i];
     inverted[i] = triangle_is_inverted(surface, out.points[f[0]], out.points[f[1]], out.points[f[2]], out.surface_points[f[0]],
-                                       out.surface_points[f[1]], out.surface_points[f[2]]);
+                                       out.surface_points[f[1]], out.surface_points[f[2]], side);
   });
   return std::size_t(std::count(inverted.begin(), inverted.end(), 1));
 }
