@@ -107,6 +107,8 @@ BOOST_AUTO_TEST_CASE(parser_reads_options_and_defaults)
   BOOST_TEST(d.stretch_max == 10.0);
   BOOST_TEST(d.threads == 0u);
   BOOST_TEST(d.anisotropy == -1.0);
+  BOOST_TEST(d.surface_optimization == "repair");
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--surface-optimization", "always"}).surface_optimization == "always");
   BOOST_TEST(parse({"--help"}).help);
   BOOST_TEST(parse({"-h"}).help);
   BOOST_TEST(parse({"--version"}).version);
@@ -143,6 +145,7 @@ BOOST_AUTO_TEST_CASE(parser_rejects_bad_command_lines)
   BOOST_TEST(refused({"--domain", "square", "--vertices", "10", "stray"}, "not expected: stray"));
   BOOST_TEST(refused({"--domain", "square", "--vertices"}, "--vertices: 1 required"));
   BOOST_TEST(refused({"--domain", "square", "--vertices", "10", "--metric", "weird"}, "--metric: weird not in {curvature,fig6,fig7,isotropic}"));
+  BOOST_TEST(refused({"--domain", "square", "--vertices", "10", "--surface-optimization", "sometimes"}, "--surface-optimization: sometimes not in"));
   BOOST_TEST(refused({"--input", "a.off", "--vertices", "10", "--metric", "fig6", "--metric-file", "m.txt"},
                      "--metric excludes --metric-file"));
   BOOST_TEST(refused({"--domain", "square", "--vertices", "10", "--metric-file", "m.txt"}, "--metric-file requires --input"));
@@ -245,6 +248,27 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_square_and_writes_its_outputs)
   // nothing was repaired: no summary line, no report object
   BOOST_TEST(r.out.find("repairs") == std::string::npos);
   BOOST_TEST(!j.contains("repairs"));
+  // no inverted triangle: the surface optimisation (by default only a repair) did not run
+  BOOST_TEST(r.out.find("optimised") == std::string::npos);
+  BOOST_TEST(!j.contains("surface_optimization"));
+}
+
+BOOST_AUTO_TEST_CASE(tool_optimises_on_the_surface_when_asked)
+{
+  const std::string report = out_dir + "/cli_fig6_optimised.json";
+  std::remove(report.c_str());
+  const Run r = run("--domain square --metric fig6 --vertices 300 --iterations 50 --surface-optimization always --report " + report);
+  BOOST_TEST(r.status == 0);
+  BOOST_TEST(r.out.find("optimised    on the surface: ") != std::string::npos);
+  const nlohmann::json j = read_json(report);
+  const nlohmann::json& so = j.at("surface_optimization");
+  BOOST_TEST(so.at("ran") == true);
+  BOOST_TEST(so.at("fixed_vertices").get<std::size_t>() == j.at("output").at("boundary_vertices").get<std::size_t>());
+  BOOST_TEST(so.at("inverted_after") == 0);
+  BOOST_TEST(so.at("G_avg_after") == j.at("quality").at("G_avg"));
+  BOOST_TEST(so.at("G_avg_after").get<double>() >= so.at("G_avg_before").get<double>());
+  BOOST_TEST(so.at("theta_min_after").get<double>() >= so.at("theta_min_before").get<double>());
+  BOOST_TEST(j.at("output").at("vertices") == 300);
 }
 
 BOOST_AUTO_TEST_CASE(tool_bad_input_exits_2_with_a_message)

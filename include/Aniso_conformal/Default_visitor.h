@@ -26,8 +26,9 @@ struct Default_visitor {
   void on_stage_finished(Stage /*s*/, double /*seconds*/) {}
   /*!
    * called after each iteration of an iterative stage (`EDGE_LENGTHS`: adjustment round,
-   * `EMBEDDING`: Newton step, `CVT`: optimiser iteration) with the iteration number, the bound on
-   * iterations and the stage's current value (invalid triangles, gradient norm, CVT energy).
+   * `EMBEDDING`: Newton step, `CVT`: optimiser iteration, `SURFACE_OPTIMIZATION`: round) with the
+   * iteration number, the bound on iterations and the stage's current value (invalid triangles, gradient
+   * norm, CVT energy, flips and moves of the round).
    * Returning `false` cancels: the algorithm throws `Cancelled` and leaves the output unchanged.
    */
   bool on_iteration(Stage /*s*/, std::size_t /*iteration*/, std::size_t /*bound*/, double /*value*/) { return true; }

@@ -48,7 +48,9 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  * as close to equilateral as possible when measured in `metric`, by the method of Zhong et al.\ 2014:
  * metric edge lengths (with metric-Delaunay flips and longest-edge splits), conformal embedding into
  * the canonical domain of the surface's topology, weighted CVT with density `cf^2` there, Delaunay dual
- * mapped back onto the input.
+ * mapped back onto the input, then (by default only when that mesh has inverted triangles) a final
+ * optimisation on the input surface in the metric (`optimize_surface_mesh()`: metric-Delaunay flips and
+ * vertex moves along the surface).
  *
  * The domain follows the topology (or the `parametric_domain` named parameter, checked against it); each
  * is a model of `ParametricDomain` and `remesh()` calls `remesh_in_domain()` with it:
@@ -80,6 +82,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *   - `corner_angle` (default 30): boundary turning angle, in degrees, above which a vertex is a corner;
  *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
  *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
+ *   - `surface_optimization` (default `Surface_optimization::REPAIR`): when the final optimisation on the
+ *     surface runs (`OFF`, `REPAIR`: only when the dual mesh has inverted triangles, `ALWAYS`);
  *   - `number_of_threads` (default 0 = all cores) for the CVT integration, the dual mesh's projections and
  *     the quality (the output does not depend on it);
  *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).
@@ -91,7 +95,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *         `number_of_vertices` is missing, below the minimum (3 and the number of corners; 4 on the sphere, 7 on the flat torus,
  *         the smallest triangulation of the genus above that: 10 for genus 2, 12 for genus 3)
  * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
- *         output would have an inverted or degenerate triangle or a wrong topology (it is never returned)
+ *         output would have an inverted or degenerate triangle (left after the surface optimisation) or a
+ *         wrong topology (it is never returned)
  * \throws Cancelled if the visitor asked to stop
  */
 template <typename AnisotropicMetric, typename NamedParameters = parameters::Default_named_parameters>
