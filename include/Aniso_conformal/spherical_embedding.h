@@ -39,7 +39,10 @@ struct Spherical_embedding {
   int puncture = -1;                      ///< the vertex sent to infinity by the planar map (then to a pole)
   std::size_t iterations = 0;             ///< Newton iterations of the planar solve
   double residual = 0;                    ///< max |2 pi - angle sum| over the free vertices at the end
-  std::size_t degenerate_triangles = 0;   ///< triangles treated as flat at the end of the solve (0 normally)
+  /// triangles of the disk (the surface minus the star of the puncture) flat in the planar metric at the
+  /// end of the solve (0 normally; the star's own triangles hold the point at infinity, have no planar
+  /// shape, and are judged on the sphere instead)
+  std::size_t degenerate_triangles = 0;
   std::size_t flips = 0;                  ///< intrinsic Delaunay flips (the first pass on the whole surface, then the solve)
   std::size_t centring_iterations = 0;    ///< iterations of the Moebius normalisation
   double centre_offset = 0;               ///< norm of the area centroid after the Moebius normalisation
@@ -142,6 +145,19 @@ Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const Nam
   const std::size_t delaunay_flips = emb.flips;
   internal::solve_euclidean_conformal_metric(itri, fixed, np, "spherical embedding", emb, &keep, &fixed_u);
   emb.flips += delaunay_flips;
+  auto in_star = [&](int f) {
+    const auto& c = itri.face_vertices(std::size_t(f));
+    return c[0] == p || c[1] == p || c[2] == p;
+  };
+  // the solver counts every face; the star's (all corners fixed, in no angle sum that is solved) has
+  // lengths scaled by the inversion's data, which give it no shape in the plane: judged on the sphere
+  emb.degenerate_triangles = 0;
+  for(int f = 0; f < nf; ++f)
+    if(!in_star(f)) {
+      bool deg;
+      internal::corner_angles(internal::scaled_face_lengths(itri, f, emb.u), deg);
+      if(deg) ++emb.degenerate_triangles;
+    }
   if(emb.degenerate_triangles > 0)
     throw Convergence_failure("spherical embedding: " + std::to_string(emb.degenerate_triangles) +
                                   " triangles are flat in the planar metric (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
@@ -149,10 +165,6 @@ Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const Nam
   // unfold the disk breadth-first (every face but the star of p), each vertex once
   std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
   for(int f = 0; f < nf; ++f) L[std::size_t(f)] = internal::scaled_face_lengths(itri, f, emb.u);
-  auto in_star = [&](int f) {
-    const auto& c = itri.face_vertices(std::size_t(f));
-    return c[0] == p || c[1] == p || c[2] == p;
-  };
   int f0 = 0;
   while(in_star(f0)) ++f0;  // the star is not everything: the link is a simple cycle of length >= 3
   std::vector<Eigen::Vector2d> uv(std::size_t(nv), Eigen::Vector2d::Zero());
