@@ -165,7 +165,8 @@ Case surface_case(const std::string& name, const std::string& fig, std::function
     const double c0 = cpu_seconds();
     AC::Curvature_metric_options co;
     co.stretch_max = stretch;
-    co.smoothing_iterations = smoothing;
+    co.smoothing_iterations = smoothing;        // the directions
+    co.scale_smoothing_iterations = smoothing;  // and the scales: 0 is no smoothing at all
     co.number_of_threads = threads;
     const AC::Curvature_metric metric(s, co);
     const double metric_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -375,13 +376,13 @@ int main(int argc, char** argv)
       // (Curvature_metric), so the bound (29 or 50) is reached along the lines where a curvature vanishes.
       cases.push_back(cyclide_case("cyclide 1, bound 29, Table 2 (100 it.)", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920));
       cases.push_back(cyclide_case("cyclide 1, bound 29, Table 1 (200 it.)", "11", 180, 144, 29, 8000, 200, 36, 548.21, 25920));
-      cases.push_back(cyclide_case("cyclide 1, bound 29, no direction smoothing", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920, 0));
+      cases.push_back(cyclide_case("cyclide 1, bound 29, no smoothing", "11", 180, 144, 29, 8000, 100, 36, 274.10, 25920, 0));
       cases.push_back(cyclide_case("cyclide 1, bound 50 (beyond the paper)", "11", 180, 144, 50, 8000, 100, 0, 0, 25920));
       cases.push_back(cyclide_case("cyclide 2, bound 18", "15", 180, 120, 18, 1000, 100, 24, 39.15, 21600));
       // Fig. 10: the ellipsoid through the sphere (paper: 225 s embedding + 182 s CVT), and a real genus-0 model
-      cases.push_back(ellipsoid_case("ellipsoid (1, 0.6, 0.4), bound 10 (realised [1, 2.5])", 5, 1000, 225, 182, 10242));
+      cases.push_back(ellipsoid_case("ellipsoid (1, 0.6, 0.4), bound 10", 5, 1000, 225, 182, 10242));
       // the short semi-axis 0.1 makes the curvature ratio reach 100: unsmoothed, the stretch spans [1, 10]
-      cases.push_back(surface_case("ellipsoid (1, 0.6, 0.1), bound 10, no smoothing (realised [1, 10])", "10",
+      cases.push_back(surface_case("ellipsoid (1, 0.6, 0.1), bound 10, no smoothing", "10",
                                    []() { return AC::make_ellipsoid(5, 1, 0.6, 0.1); }, 10, 1000, 100, 225, 182, 10242, 0));
       cases.push_back(surface_case("bear (genus 0), bound 5", "-",
                                    [data]() { return AC::IO::read_triangle_mesh(data + "/meshes/bear.off"); }, 5, 1000, 100,
