@@ -28,7 +28,8 @@ int main(int argc, char** argv)
 
     AC::Curvature_metric_options options;
     options.stretch_max = argc > 3 ? std::atof(argv[3]) : 5.0;  // edges at most 5x longer along than across
-    options.smoothing_iterations = 2;  // a coarse scan: little smoothing keeps its anisotropy
+    options.smoothing_iterations = 2;        // a coarse scan: little smoothing keeps its anisotropy
+    options.scale_smoothing_iterations = 2;  // (directions and scales)
     const AC::Curvature_metric metric(surface, options);
     const auto& ratios = metric.stretch_ratios();
     std::cout << "curvature metric: stretch ratios in [" << *std::min_element(ratios.begin(), ratios.end()) << ", "

@@ -230,6 +230,14 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_square_and_writes_its_outputs)
   for(double c : q.at("angle_histogram").at("counts")) angles += c;
   BOOST_TEST(angles == 3.0 * double(triangles));
   BOOST_TEST(q.at("metric_edge_length").at("normalized_min") <= q.at("metric_edge_length").at("normalized_max"));
+  // the realised anisotropy: Fig. 6's metric has stretch up to 33 (s1 = 1, s2 = 1 / (0.031 + y)), 1 nowhere inside
+  const nlohmann::json& st = q.at("metric_stretch");
+  BOOST_TEST((st.at("min").get<double>() >= 1 && st.at("min") <= st.at("median") && st.at("median") <= st.at("p95") &&
+              st.at("p95") <= st.at("max")));
+  BOOST_TEST(st.at("max").get<double>() > 10);
+  BOOST_TEST(st.at("max").get<double>() <= 1.031 / 0.031 + 1e-6);
+  BOOST_TEST(q.at("metric_edge_length").at("mean").get<double>() > 0);
+  BOOST_TEST(r.out.find("metric stretch at the vertices") != std::string::npos);
   BOOST_TEST(j.at("edge_adjustment").at("flips").is_number_unsigned());
   BOOST_TEST(j.at("edge_adjustment").at("splits").is_number_unsigned());
   BOOST_TEST(j.at("conformal_embedding").at("newton_iterations").get<int>() > 0);

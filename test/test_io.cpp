@@ -327,6 +327,14 @@ BOOST_AUTO_TEST_CASE(image_metric_stretches_across_edges)
   BOOST_TEST(contains(message_of([&] { AC::make_image_background(tiny); }), "at least 2 x 2"));
 }
 
+// a real figure as the report writes it (10 significant digits)
+double report_figure(double x)
+{
+  char g[32];
+  std::snprintf(g, sizeof(g), "%.10g", x);
+  return std::strtod(g, nullptr);
+}
+
 BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
 {
   // a small crop of the CT image remeshes with its rectangle kept
@@ -370,6 +378,18 @@ BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
   BOOST_TEST(j.at("cvt").at("energy").size() == r.cvt.energy.size());
   BOOST_TEST(j.at("cvt").at("iterations") == r.cvt.iterations);
   BOOST_TEST(j.at("seconds").size() == std::size_t(AC::number_of_stages) + 1);
+  // the realised anisotropy: the metric's stretch at the output vertices and the edges' metric conformity
+  const nlohmann::json& st = j.at("quality").at("metric_stretch");
+  BOOST_TEST(st.at("min").get<double>() == report_figure(r.quality.stretch_min));
+  BOOST_TEST(st.at("median").get<double>() == report_figure(r.quality.stretch_median));
+  BOOST_TEST(st.at("p95").get<double>() == report_figure(r.quality.stretch_p95));
+  BOOST_TEST(st.at("max").get<double>() == report_figure(r.quality.stretch_max));
+  BOOST_TEST((1 <= st.at("min").get<double>() && st.at("min") <= st.at("median") && st.at("median") <= st.at("p95") &&
+              st.at("p95") <= st.at("max")));
+  const nlohmann::json& el = j.at("quality").at("metric_edge_length");
+  BOOST_TEST(el.at("mean").get<double>() == report_figure(r.quality.edge_length_mean));
+  BOOST_TEST(el.at("normalized_stddev").get<double>() == report_figure(r.quality.edge_length_stddev));
+  BOOST_TEST((el.at("normalized_min").get<double>() <= 1 && el.at("normalized_max").get<double>() >= 1));
   // nothing repaired: no `repairs` object; a repaired input's report has one, with its counts
   BOOST_TEST(!j.contains("repairs"));
   AC::Remeshing_result repaired = r;

@@ -482,6 +482,7 @@ BOOST_AUTO_TEST_CASE(flatter_ellipsoid_realises_the_papers_stretch_range)
   AC::Curvature_metric_options co;
   co.stretch_max = 10;
   co.smoothing_iterations = 0;
+  co.scale_smoothing_iterations = 0;
   const AC::Curvature_metric metric(s, co);
   const std::vector<double>& ratios = metric.stretch_ratios();
   BOOST_TEST(*std::max_element(ratios.begin(), ratios.end()) >= 9.9);

@@ -2,9 +2,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Unit tests of the pipeline's stages, each called on its own: the metric models (incl. the curvature
-// metric on a sphere, a cylinder and a saddle), metric square roots, the intrinsic triangulation,
-// edge-length adjustment, the conformal embedding, the weighted CVT, the dual mesh, the surface
-// optimisation and the quality module.
+// metric on a sphere, a cylinder, a saddle, a torus, a crease and the Table 2 cyclide), metric square
+// roots, the intrinsic triangulation, edge-length adjustment, the conformal embedding, the weighted CVT,
+// the dual mesh, the surface optimisation and the quality module.
 
 #define BOOST_TEST_MODULE Aniso_conformal_stages
 #include <boost/test/unit_test.hpp>
@@ -21,6 +21,7 @@
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/conformal_embedding.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/make_dupin_cyclide.h>
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/optimize_surface_mesh.h>
@@ -199,6 +200,127 @@ BOOST_AUTO_TEST_CASE(curvature_metric_on_a_saddle_and_bad_options)
   bad = AC::Curvature_metric_options();
   bad.smoothing_rings = 0;
   BOOST_TEST(invalid_input_message([&] { AC::Curvature_metric(s, bad); }).find("smoothing") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(curvature_metric_keeps_the_stretch_of_a_torus)
+{
+  // a closed torus R = 1, r = 0.25 (angle t around the tube): kappa_tube = 1 / r, kappa_ring =
+  // cos t / (R + r cos t), so the stretch sqrt|kappa_tube / kappa_ring| is sqrt(3) on the inner equator,
+  // sqrt(5) on the outer one and unbounded on the top and bottom circles, where the bound is reached
+  const double R = 1, r = 0.25;
+  const int nu = 160, nv = 64;
+  std::vector<Eigen::Vector3d> pts;
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j < nv; ++j)
+    for(int i = 0; i < nu; ++i) {
+      const double p = 2 * pi * i / nu, t = 2 * pi * j / nv;
+      pts.emplace_back((R + r * std::cos(t)) * std::cos(p), (R + r * std::cos(t)) * std::sin(p), r * std::sin(t));
+    }
+  auto id = [&](int j, int i) { return std::size_t((j % nv) * nu + (i % nu)); };
+  for(int j = 0; j < nv; ++j)
+    for(int i = 0; i < nu; ++i) {
+      faces.push_back({{id(j, i), id(j, i + 1), id(j + 1, i + 1)}});
+      faces.push_back({{id(j, i), id(j + 1, i + 1), id(j + 1, i)}});
+    }
+  const AC::Input_surface s(pts, faces);
+  AC::Curvature_metric_options o;
+  o.stretch_max = 4;
+  const AC::Curvature_metric m(s, o);
+  double inner = 0, outer = 0, top = 1e300;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v) {
+    const Eigen::Vector3d& p = s.points()[v];
+    const double rho = std::hypot(p.x(), p.y());
+    if(std::abs(p.z()) < 1e-9 && rho < R) inner = std::max(inner, m.stretch_ratios()[v]);
+    if(std::abs(p.z()) < 1e-9 && rho > R) outer = std::max(outer, m.stretch_ratios()[v]);
+    if(std::abs(std::abs(p.z()) - r) < 1e-9) top = std::min(top, m.stretch_ratios()[v]);
+  }
+  BOOST_TEST_MESSAGE("torus stretch: inner " << inner << ", outer " << outer << ", top and bottom " << top);
+  BOOST_TEST(std::abs(inner / std::sqrt(3.0) - 1) < 0.1);
+  BOOST_TEST(std::abs(outer / std::sqrt(5.0) - 1) < 0.1);
+  BOOST_TEST(top > 0.75 * o.stretch_max);  // the scales' smoothing spreads the band of the bound
+  for(double x : m.stretch_ratios()) BOOST_TEST((x >= 1 - 1e-12 && x <= o.stretch_max + 1e-9));
+  // unsmoothed scales: the bound exactly on the top and bottom circles
+  o.scale_smoothing_iterations = 0;
+  const AC::Curvature_metric raw(s, o);
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v)
+    if(std::abs(std::abs(s.points()[v].z()) - r) < 1e-9) BOOST_TEST(std::abs(raw.stretch_ratios()[v] - o.stretch_max) < 1e-9);
+}
+
+BOOST_AUTO_TEST_CASE(curvature_metric_realises_the_table_2_stretch_on_the_cyclide)
+{
+  // the paper's Table 2 input and bound 29. The curvature supports stretches above 7 only on bands one or
+  // two vertices wide, where a principal curvature changes sign; averaging the scales lowers them
+  const AC::Input_surface s = AC::make_dupin_cyclide(180, 144);
+  AC::Curvature_metric_options o;
+  o.stretch_max = 29;
+  auto sorted_stretch = [&](const AC::Curvature_metric& m) {
+    std::vector<double> st = m.stretch_ratios();
+    std::sort(st.begin(), st.end());
+    BOOST_TEST_MESSAGE("cyclide stretch: min " << st.front() << ", 5% " << st[st.size() / 20] << ", median "
+                       << st[st.size() / 2] << ", 95% " << st[st.size() * 19 / 20] << ", max " << st.back());
+    BOOST_TEST(st.front() >= 1 - 1e-12);
+    BOOST_TEST(st.back() <= 29 + 1e-9);
+    return st;
+  };
+  // the default: the log-Euclidean average of the scales keeps far more of the stretch than the linear
+  // average of the tensors, which left [1, 4.7]
+  const AC::Curvature_metric m(s, o);
+  std::vector<double> st = sorted_stretch(m);
+  BOOST_TEST(st.back() > 7);
+  BOOST_TEST(st[st.size() * 19 / 20] > 5);
+  // unsmoothed scales (the directions still smoothed): the bound is reached on those bands (more than 1%
+  // of the vertices), the bulk keeps the curvature's own stretch (95th percentile 5.7)
+  o.scale_smoothing_iterations = 0;
+  const AC::Curvature_metric raw(s, o);
+  st = sorted_stretch(raw);
+  BOOST_TEST(st.back() > 0.999 * 29);
+  BOOST_TEST(st[st.size() * 99 / 100] > 0.95 * 29);
+  BOOST_TEST(st[st.size() * 19 / 20] > 5);
+  // the quality module measures the same stretch on the input mesh (its tangent planes are the faces')
+  std::vector<std::array<std::size_t, 3>> faces;
+  for(const auto& f : s.faces()) faces.push_back({{f[0], f[1], f[2]}});
+  std::vector<Eigen::Matrix3d> Q;
+  for(const auto& M : raw.tensors()) Q.push_back(AC::internal::symmetric_sqrt(M));
+  const AC::Quality_report q = AC::compute_mesh_quality(s.points(), faces, Q);
+  std::size_t close = 0;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v)
+    if(std::abs(q.vertex_stretch[v] / raw.stretch_ratios()[v] - 1) < 0.05) ++close;
+  BOOST_TEST(close >= s.number_of_vertices() * 99 / 100);
+  BOOST_TEST(std::abs(q.stretch_max / st.back() - 1) < 0.05);
+  BOOST_TEST(std::abs(q.stretch_median / st[st.size() / 2] - 1) < 0.05);
+}
+
+BOOST_AUTO_TEST_CASE(curvature_metric_does_not_smooth_across_a_crease)
+{
+  // a roof z = -|x| over [-1, 1]^2: two flat sides (isotropic after the floor) meeting at a 90-degree crease
+  // along x = 0, whose vertices are strongly stretched along the ridge
+  const AC::Input_surface s = grid_surface(20, 20, [](double u, double v) {
+    const double x = 2 * u - 1;
+    return Eigen::Vector3d(x, 2 * v - 1, -std::abs(x));
+  });
+  AC::Curvature_metric_options o;
+  o.scale_smoothing_iterations = 2;  // a few rounds: a leak shows in the stretch without being spread thin
+  const AC::Curvature_metric m(s, o);
+  double side = 0, ridge = 1e300;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v) {
+    const Eigen::Vector3d& p = s.points()[v];
+    if(std::abs(p.y()) > 0.7) continue;  // away from the ends of the ridge
+    if(std::abs(p.x()) < 1e-12) ridge = std::min(ridge, m.stretch_ratios()[v]);
+    else side = std::max(side, m.stretch_ratios()[v]);
+  }
+  BOOST_TEST(ridge > 0.99 * o.stretch_max);  // the crease keeps its stretch
+  BOOST_TEST(side < 1 + 1e-9);               // and its neighbours stay isotropic
+  // with no crease (feature angle 180), the ridge leaks into its neighbours
+  o.feature_angle = 180;
+  const AC::Curvature_metric leaky(s, o);
+  double leaked = 0;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v)
+    if(std::abs(s.points()[v].x() - 0.1) < 1e-12 && std::abs(s.points()[v].y()) < 0.7)
+      leaked = std::max(leaked, leaky.stretch_ratios()[v]);
+  BOOST_TEST_MESSAGE("stretch next to the ridge with no crease: " << leaked);
+  BOOST_TEST(leaked > 1.3);
+  o.feature_angle = 0;
+  BOOST_TEST(invalid_input_message([&] { AC::Curvature_metric(s, o); }).find("feature_angle") != std::string::npos);
 }
 
 // ------------------------------------------------------------------------ metric square roots
@@ -638,8 +760,14 @@ BOOST_AUTO_TEST_CASE(quality_is_measured_in_the_metric)
   BOOST_TEST(std::abs(q.G_min - 1) < 1e-12);
   BOOST_TEST(std::abs(q.theta_min - 60) < 1e-9);
   BOOST_TEST(q.edge_length_stddev < 1e-12);
+  // the realised stretch of that metric is 2 at every vertex
+  BOOST_TEST(q.vertex_stretch.size() == 3u);
+  for(double x : q.vertex_stretch) BOOST_TEST(std::abs(x - 2) < 1e-12);
+  BOOST_TEST((std::abs(q.stretch_min - 2) < 1e-12 && std::abs(q.stretch_max - 2) < 1e-12));
+  BOOST_TEST((std::abs(q.stretch_median - 2) < 1e-12 && std::abs(q.stretch_p95 - 2) < 1e-12));
   q = AC::compute_mesh_quality(flat, tri, I);
   BOOST_TEST(q.G_min < 0.7);
+  BOOST_TEST((q.stretch_min == 1.0 && q.stretch_max == 1.0));
 
   BOOST_TEST(invalid_input_message([&] { AC::compute_mesh_quality(flat, tri, {}); }).find("one metric per vertex") !=
              std::string::npos);
@@ -795,4 +923,35 @@ BOOST_AUTO_TEST_CASE(surface_optimization_in_the_plane_keeps_the_boundary_and_re
   const AC::Surface_optimization_report f = AC::optimize_surface_mesh(input, metric, repaired);
   check_optimised(input, metric, folded, repaired, f, boundary);
   BOOST_TEST(f.inverted_after == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(quality_reports_the_realised_stretch)
+{
+  const AC::Input_surface s = uv_sphere(48, 24, 1.0);
+  std::vector<std::array<std::size_t, 3>> faces;
+  for(const auto& f : s.faces()) faces.push_back({{f[0], f[1], f[2]}});
+  // a uniform metric: stretch 1 at every vertex
+  AC::Quality_report q = AC::compute_mesh_quality(s.points(), faces, std::vector<Eigen::Matrix3d>(s.number_of_vertices(), 3 * Eigen::Matrix3d::Identity()));
+  for(double x : q.vertex_stretch) BOOST_TEST(std::abs(x - 1) < 1e-12);
+  BOOST_TEST((q.stretch_min >= 1.0 && q.stretch_max < 1 + 1e-12));  // >= 1 by definition
+  // M = diag(1, 1, 25) on the unit sphere: on the tangent plane of normal n the stretch is
+  // sqrt(1 + 24 (1 - n_z^2)): 5 on the equator, 1 at the poles (n: the area-weighted normal of the mesh)
+  const std::vector<Eigen::Matrix3d> Q(s.number_of_vertices(), Eigen::Vector3d(1, 1, 5).asDiagonal().toDenseMatrix());
+  q = AC::compute_mesh_quality(s.points(), faces, Q);
+  std::vector<Eigen::Vector3d> normal(s.number_of_vertices(), Eigen::Vector3d::Zero());
+  for(const auto& f : faces)
+    for(int k = 0; k < 3; ++k)
+      normal[f[k]] += (s.points()[f[1]] - s.points()[f[0]]).cross(s.points()[f[2]] - s.points()[f[0]]);
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v) {
+    const double z = normal[v].normalized().z();
+    BOOST_TEST(std::abs(q.vertex_stretch[v] - std::sqrt(1 + 24 * (1 - z * z))) < 1e-9);
+    BOOST_TEST(std::abs(z - s.points()[v].z()) < 0.05);  // close to the sphere's own normal
+  }
+  BOOST_TEST(std::abs(q.stretch_min - 1) < 1e-9);  // the poles
+  BOOST_TEST(std::abs(q.stretch_max - 5) < 0.05);  // the equator
+  BOOST_TEST((q.stretch_min <= q.stretch_median && q.stretch_median <= q.stretch_p95 && q.stretch_p95 <= q.stretch_max));
+  // nearest rank: the 95th percentile is the value of a vertex at least 95% of the vertices do not exceed
+  std::size_t below = 0;
+  for(double x : q.vertex_stretch) below += x <= q.stretch_p95;
+  BOOST_TEST(below >= s.number_of_vertices() * 95 / 100);
 }

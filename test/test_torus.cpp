@@ -321,6 +321,7 @@ BOOST_AUTO_TEST_CASE(high_stretch_embeds_with_intrinsic_flips)
   AC::Curvature_metric_options co;
   co.stretch_max = 50;
   co.smoothing_iterations = 0;
+  co.scale_smoothing_iterations = 0;
   const AC::Curvature_metric metric(fine, co);
   BOOST_TEST(*std::max_element(metric.stretch_ratios().begin(), metric.stretch_ratios().end()) > 49.0);
   AC::Intrinsic_triangulation t = background(fine, metric);
@@ -332,6 +333,7 @@ BOOST_AUTO_TEST_CASE(high_stretch_embeds_with_intrinsic_flips)
   // and the whole pipeline with the bound 50 and the default smoothing
   const AC::Input_surface s = AC::make_dupin_cyclide(90, 72);
   co.smoothing_iterations = 10;
+  co.scale_smoothing_iterations = 10;
   AC::Remeshing_result r;
   const AC::Remeshed_surface out =
       remesh_torus(s, AC::Curvature_metric(s, co), r, AC::parameters::number_of_vertices(std::size_t(1500)).random_seed(4u));

@@ -147,8 +147,10 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 result.hausdorff_distance, result.hausdorff_distance_relative);
     std::printf("quality      G_min %.4f  G_avg %.4f  theta_min %.2f  theta_avg %.2f  %%<30 %.3f\n", q.G_min, q.G_avg,
                 q.theta_min, q.theta_avg, q.percent_below_30);
-    std::printf("metric edge  normalised length stddev %.3f, min %.3f, max %.3f\n", q.edge_length_stddev,
-                q.edge_length_min, q.edge_length_max);
+    std::printf("metric edge  mean length %.4g, normalised length stddev %.3f, min %.3f, max %.3f\n",
+                q.edge_length_mean, q.edge_length_stddev, q.edge_length_min, q.edge_length_max);
+    std::printf("stretch      metric stretch at the vertices min %.2f, median %.2f, 95%% %.2f, max %.2f\n",
+                q.stretch_min, q.stretch_median, q.stretch_p95, q.stretch_max);
     std::printf("stages       flips %zu, splits %zu, repaired %zu, Newton %zu (residual %.2g, %zu intrinsic flips), "
                 "CVT %zu iterations (%s)\n",
                 result.adjustment.flips, result.adjustment.splits, result.adjustment.repaired_triangles,
@@ -207,6 +209,7 @@ int main_impl(int argc, char** argv)
     co.stretch_max = o.stretch_max;
     co.smoothing_iterations = o.smoothing_iterations;
     co.smoothing_rings = o.smoothing_rings;
+    if(o.scale_smoothing_iterations >= 0) co.scale_smoothing_iterations = o.scale_smoothing_iterations;
     return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input, &repairs);
   }
   if(o.metric == "fig6" || o.metric == "fig7") {

@@ -39,6 +39,7 @@ struct Options {
   double stretch_max = 10;
   int smoothing_iterations = 10;
   int smoothing_rings = 2;
+  int scale_smoothing_iterations = -1;  // -1: the library's default
   double anisotropy = -1;   // image only; default (-1) 0.1 colour, 0.2 grey
   // remeshing
   long long vertices = -1;
@@ -204,7 +205,7 @@ inline void declare_options(CLI::App& app, Options& o)
   add_real(app, "--stretch-max", o.stretch_max, "R", "curvature metric: bound on the stretch ratio (default 10)",
            real("at least 1", [](double x) { return x >= 1; }))
     ->group(me);
-  app.add_option("--smoothing-iterations", o.smoothing_iterations, "curvature metric: smoothing rounds (default 10)")
+  app.add_option("--smoothing-iterations", o.smoothing_iterations, "curvature metric: smoothing rounds of the directions (default 10)")
     ->type_name("K")
     ->transform(decimal_integer())
     ->check(CLI::Range(0, 100000))
@@ -213,6 +214,12 @@ inline void declare_options(CLI::App& app, Options& o)
     ->type_name("R")
     ->transform(decimal_integer())
     ->check(CLI::Range(0, 100))
+    ->group(me);
+  app.add_option("--scale-smoothing-iterations", o.scale_smoothing_iterations,
+                 "curvature metric: 1-ring averaging rounds of the log scales (default: the library's)")
+    ->type_name("K")
+    ->transform(decimal_integer())
+    ->check(CLI::Range(0, 100000))
     ->group(me);
   add_real(app, "--anisotropy", o.anisotropy, "S",
            "image metric: colour weight s of the paper's eq. 9 (default 0.1 colour, 0.2 grey)",

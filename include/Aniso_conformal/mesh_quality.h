@@ -8,11 +8,13 @@
 #include <Aniso_conformal/internal/parallel_for.h>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -42,12 +44,24 @@ struct Quality_report {
   double edge_length_stddev = 0;        ///< standard deviation of the normalised lengths
   double edge_length_min = 0;           ///< smallest normalised length
   double edge_length_max = 0;           ///< largest normalised length
+  /// realised anisotropy: the stretch ratio `sqrt(lambda_max / lambda_min)` of the metric restricted to
+  /// the mesh's tangent plane at each vertex (the plane orthogonal to the area-weighted normal of its
+  /// triangles), in the order of the points; 0 for a vertex of no triangle, +infinity where the metric is
+  /// singular on that plane
+  std::vector<double> vertex_stretch;
+  double stretch_min = 0;               ///< smallest stretch ratio over the vertices of triangles (>= 1)
+  double stretch_median = 0;            ///< median (nearest rank) stretch ratio
+  double stretch_p95 = 0;               ///< 95th percentile (nearest rank) stretch ratio
+  double stretch_max = 0;               ///< largest stretch ratio
 };
 
 /*!
  * \ingroup PkgAnisoConformalQuality
  * measures the quality of the mesh (`points`, `faces`) in the metric whose square roots at the
- * vertices are `Q` (DESIGN.md 3 "Quality"). Time linear in the size of the mesh (plus sorting its edges);
+ * vertices are `Q` (DESIGN.md 3 "Quality"), and the anisotropy the mesh realises: the stretch ratio of the
+ * metric at its vertices (`Quality_report::vertex_stretch` and its min, median, 95th percentile, max).
+ * `points`: n positions (any unit); `faces`: indices into `points`, counter-clockwise seen from outside;
+ * `Q`: n symmetric 3x3 square roots `M^{1/2}` of the metric (`M` is in 1 / unit^2). Time linear in the size of the mesh (plus sorting its edges);
  * the per-triangle and per-edge work runs on `number_of_threads` threads (0 = every core), the sums in
  * face and edge order, so the report does not depend on the number of threads.
  * \throws Invalid_input if the sizes disagree or the mesh is empty
@@ -131,6 +145,41 @@ inline Quality_report compute_mesh_quality(const std::vector<Eigen::Vector3d>& p
     r.edge_length_max = std::max(r.edge_length_max, x);
   }
   r.edge_length_stddev = std::sqrt(var / double(edges.size()));
+
+  // the stretch of the metric at the vertices, on the plane orthogonal to the mesh's vertex normal
+  std::vector<Eigen::Vector3d> normal(points.size(), Eigen::Vector3d::Zero());
+  for(const auto& f : faces) {
+    const Eigen::Vector3d c = (points[f[1]] - points[f[0]]).cross(points[f[2]] - points[f[0]]);
+    for(int k = 0; k < 3; ++k) normal[f[k]] += c;
+  }
+  r.vertex_stretch.assign(points.size(), 0.0);
+  internal::parallel_for(points.size(), number_of_threads, [&](std::size_t v) {
+    const double len = normal[v].norm();
+    if(!(len > 0)) return;  // a vertex of no (or only of degenerate) triangles: no tangent plane
+    const Eigen::Vector3d n = normal[v] / len, t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    Eigen::Matrix<double, 3, 2> B;
+    B.col(0) = t1;
+    B.col(1) = t2;
+    const Eigen::Matrix<double, 3, 2> A = Q[v] * B;  // M restricted to the plane is A^T A
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(A.transpose() * A, Eigen::EigenvaluesOnly);
+    const double lo = es.eigenvalues()[0], hi = es.eigenvalues()[1];
+    r.vertex_stretch[v] = lo > 0 ? std::max(1.0, std::sqrt(hi / lo)) : std::numeric_limits<double>::infinity();
+  }, 2048);
+  std::vector<double> sorted;
+  sorted.reserve(points.size());
+  for(std::size_t v = 0; v < points.size(); ++v)
+    if(normal[v].norm() > 0) sorted.push_back(r.vertex_stretch[v]);
+  if(!sorted.empty()) {
+    std::sort(sorted.begin(), sorted.end());
+    const auto rank = [&](double p) {  // nearest rank: the smallest value with at least p of the values <= it
+      const std::size_t k = std::size_t(std::ceil(p * double(sorted.size())));
+      return sorted[std::min(sorted.size() - 1, k > 0 ? k - 1 : 0)];
+    };
+    r.stretch_min = sorted.front();
+    r.stretch_median = rank(0.5);
+    r.stretch_p95 = rank(0.95);
+    r.stretch_max = sorted.back();
+  }
   return r;
 }
 

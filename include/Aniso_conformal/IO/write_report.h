@@ -66,7 +66,10 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * the report of `r` as a JSON object: `domain`; `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
- * histogram, the normalised metric edge lengths); `repairs`, only if the input was repaired on reading
+ * histogram; `metric_edge_length`: the mean edge length in the metric and the standard deviation, min and
+ * max of the edge lengths divided by that mean, i.e. how well the edges conform to the metric;
+ * `metric_stretch`: min, median, 95th percentile and max of the metric's stretch ratio at the output
+ * vertices, i.e. the anisotropy the mesh realises); `repairs`, only if the input was repaired on reading
  * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
  * triangles they became, points welded and points left unwelded, duplicated faces removed, vertices of no face dropped, faces
  * reoriented, whether a closed surface was turned outward, whether a planar input was clockwise);
@@ -107,7 +110,12 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                    {{"mean", report_number(q.edge_length_mean)},
                     {"normalized_stddev", report_number(q.edge_length_stddev)},
                     {"normalized_min", report_number(q.edge_length_min)},
-                    {"normalized_max", report_number(q.edge_length_max)}}}};
+                    {"normalized_max", report_number(q.edge_length_max)}}},
+                  {"metric_stretch",
+                   {{"min", report_number(q.stretch_min)},
+                    {"median", report_number(q.stretch_median)},
+                    {"p95", report_number(q.stretch_p95)},
+                    {"max", report_number(q.stretch_max)}}}};
   if(r.repairs.any())
     j["repairs"] = {{"input_vertices", r.repairs.input_points},
                     {"input_faces", r.repairs.input_polygons},
