@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_REMESH_IN_DOMAIN_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Feature_graph.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Remeshing_result.h>
@@ -16,6 +17,7 @@
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
+#include <Aniso_conformal/measure_features.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
@@ -51,9 +53,14 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   result.domain = Domain::kind;
   result.input_vertices = surface.number_of_vertices();
   result.input_faces = surface.number_of_faces();
+  // the input's sharp features (issue 15): measured on the output below, their time counted as the metric's
+  const auto features_start = std::chrono::steady_clock::now();
+  const Feature_graph features = detect_features(surface, options.feature_angle, options.corner_angle);
+  const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
 
   // 1. metric, 2. edge lengths
   Intrinsic_triangulation itri = metric_and_edge_lengths(surface, metric, n, np, vis, result);
+  result.seconds[int(Stage::METRIC)] += features_seconds;
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Stage_timer t3(vis, Stage::EMBEDDING);
@@ -70,6 +77,9 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
 
   // 6. quality in the metric, orientation against the input, topology and distance to the input
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);
+  const auto measure_start = std::chrono::steady_clock::now();
+  result.features = measure_features(surface, features, out.points, out.faces);
+  result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   return out;
 }
 

@@ -66,7 +66,9 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * the report of `r` as a JSON object: `domain`; `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
- * histogram, the normalised metric edge lengths); `repairs`, only if the input was repaired on reading
+ * histogram, the normalised metric edge lengths); `features`, only if the input has sharp features
+ * (`r.features`, `Feature_report`: crease edges, curves and corners of the input, corners kept, crease length,
+ * the length and share of it covered by output edges); `repairs`, only if the input was repaired on reading
  * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
  * triangles they became, points welded and points left unwelded, duplicated faces removed, vertices of no face dropped, faces
  * reoriented, whether a closed surface was turned outward, whether a planar input was clockwise);
@@ -106,6 +108,14 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                     {"normalized_stddev", report_number(q.edge_length_stddev)},
                     {"normalized_min", report_number(q.edge_length_min)},
                     {"normalized_max", report_number(q.edge_length_max)}}}};
+  if(r.features.crease_edges > 0 || r.features.corners > 0)  // absent: the input has no sharp feature
+    j["features"] = {{"crease_edges", r.features.crease_edges},
+                     {"curves", r.features.curves},
+                     {"corners", r.features.corners},
+                     {"corners_kept", r.features.corners_kept},
+                     {"crease_length", report_number(r.features.crease_length)},
+                     {"covered_length", report_number(r.features.covered_length)},
+                     {"covered_share", report_number(r.features.covered_share)}};
   if(r.repairs.any())
     j["repairs"] = {{"input_vertices", r.repairs.input_points},
                     {"input_faces", r.repairs.input_polygons},
