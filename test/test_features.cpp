@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace AC = Aniso_conformal;
@@ -217,38 +218,79 @@ BOOST_AUTO_TEST_CASE(a_chord_across_a_closed_rim_covers_only_what_it_follows)
   BOOST_TEST(across.covered_length == 0.0);
 }
 
-BOOST_AUTO_TEST_CASE(remeshing_a_cube_reports_its_features)
+BOOST_AUTO_TEST_CASE(remeshing_a_cube_keeps_its_eight_corners)
 {
-  // the pipeline detects the cube's features and measures the output against them (issue 15, item 4);
-  // keeping them is the next step: today the sphere's CVT rounds the corners off
+  // the corners are fixed sites of the CVT, mapped back exactly onto the input's corners (issue 15, item 2)
+  const AC::Input_surface cube = make_grid_cube(4);
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
-    make_grid_cube(4), AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(500)));
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(cube, AC::Uniform_metric(), r,
+                                                                               AC::parameters::number_of_vertices(std::size_t(500)));
   BOOST_TEST(out.points.size() == 500u);
+  BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.features.curves == 12u);
   BOOST_TEST(r.features.corners == 8u);
   BOOST_TEST(r.features.crease_edges == 48u);
   BOOST_TEST(std::abs(r.features.crease_length - 24) < 1e-12);
-  BOOST_TEST(r.features.corners_kept <= 8u);
-  BOOST_TEST(r.features.covered_share >= 0.0);
-  BOOST_TEST(r.features.covered_share <= 1.0);
-  const AC::Feature_report check = AC::measure_features(make_grid_cube(4), AC::detect_features(make_grid_cube(4), 60, 30),
-                                                         out.points, out.faces);
-  BOOST_TEST(check.corners_kept == r.features.corners_kept);
+  BOOST_TEST(r.features.corners_kept == 8u);
+  BOOST_TEST(r.cvt.energy.size() > 1u);
+  // exactly: each corner is an output vertex, bit for bit, and its surface point is the input vertex
+  std::size_t exact = 0;
+  for(std::size_t i = 0; i < out.points.size(); ++i)
+    if(out.points[i].cwiseAbs() == Eigen::Vector3d(1, 1, 1)) {
+      ++exact;
+      BOOST_TEST(out.surface_points[i].vertices[0] == out.surface_points[i].vertices[1]);
+      BOOST_TEST((cube.points()[out.surface_points[i].vertices[0]] == out.points[i]));
+    }
+  BOOST_TEST(exact == 8u);
+  // the report agrees with a measurement made apart
+  const AC::Feature_report check = AC::measure_features(cube, AC::detect_features(cube, 60, 30), out.points, out.faces);
+  BOOST_TEST(check.corners_kept == 8u);
   BOOST_TEST(check.covered_length == r.features.covered_length);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
   BOOST_TEST_MESSAGE("cube to 500: " << r.features.corners_kept << " of 8 corners kept, " << 100 * r.features.covered_share
-                                     << " % of the crease length covered, Hausdorff " << r.hausdorff_distance_relative);
-  // feature_angle(180), the tool's --no-features: no feature, and the same output
-  AC::Remeshing_result r180;
-  const AC::Remeshed_surface out180 = AC::remesh_in_domain<AC::Spherical_domain>(
-    make_grid_cube(4), AC::Uniform_metric(), r180, AC::parameters::number_of_vertices(std::size_t(500)).feature_angle(180.0));
-  BOOST_TEST(r180.features.curves == 0u);
-  BOOST_TEST(r180.features.corners == 0u);
-  BOOST_TEST(r180.features.crease_length == 0.0);
-  BOOST_TEST((out180.points == out.points));
-  // a bad feature angle is the caller's error
-  AC::Remeshing_result bad;
-  BOOST_CHECK_THROW(AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), bad,
+                                     << " % of the crease length covered, Hausdorff " << r.hausdorff_distance_relative << ", G_avg "
+                                     << r.quality.G_avg << ", theta_min " << r.quality.theta_min);
+}
+
+BOOST_AUTO_TEST_CASE(without_features_nothing_is_kept_or_counted)
+{
+  // feature_angle(180), the tool's --no-features: no feature, no fixed site, the corners rounded off
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
+    make_grid_cube(4), AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(500)).feature_angle(180.0));
+  BOOST_TEST(r.features.curves == 0u);
+  BOOST_TEST(r.features.corners == 0u);
+  BOOST_TEST(r.features.crease_length == 0.0);
+  std::size_t at_corner = 0;
+  for(const auto& p : out.points) at_corner += p.cwiseAbs() == Eigen::Vector3d(1, 1, 1);
+  BOOST_TEST(at_corner == 0u);
+  // measured against the cube's features, that output keeps none of them
+  BOOST_TEST(AC::measure_features(make_grid_cube(4), AC::detect_features(make_grid_cube(4), 60, 30), out.points, out.faces).corners_kept == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(too_few_vertices_for_the_corners_or_a_bad_angle_are_refused)
+{
+  AC::Remeshing_result r;
+  std::string message;
+  try {
+    AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(6)));
+  } catch(const AC::Invalid_input& e) {
+    message = e.what();
+  }
+  BOOST_TEST(message.find("8 corners") != std::string::npos);
+  BOOST_TEST(message.find("at least 8") != std::string::npos);
+  BOOST_TEST(message.find("feature angle") != std::string::npos);
+  // the same request without features is valid (whether 6 vertices can then be built is another question)
+  bool invalid = false;
+  try {
+    AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), r,
+                                               AC::parameters::number_of_vertices(std::size_t(6)).feature_angle(180.0));
+  } catch(const AC::Invalid_input&) {
+    invalid = true;
+  } catch(const AC::Remeshing_failure&) {
+  }
+  BOOST_TEST(!invalid);
+  BOOST_CHECK_THROW(AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), r,
                                                               AC::parameters::number_of_vertices(std::size_t(500)).feature_angle(200.0)),
                     AC::Invalid_input);
 }
