@@ -11,6 +11,8 @@
 
 #include <Aniso_conformal/Feature_graph.h>
 #include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/Spherical_domain.h>
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/measure_features.h>
@@ -18,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -250,6 +253,29 @@ BOOST_AUTO_TEST_CASE(remeshing_a_cube_keeps_its_eight_corners)
   BOOST_TEST_MESSAGE("cube to 500: " << r.features.corners_kept << " of 8 corners kept, " << 100 * r.features.covered_share
                                      << " % of the crease length covered, Hausdorff " << r.hausdorff_distance_relative << ", G_avg "
                                      << r.quality.G_avg << ", theta_min " << r.quality.theta_min);
+}
+
+BOOST_AUTO_TEST_CASE(corners_closer_than_half_an_output_edge_are_not_all_fixed)
+{
+  // the cube's corners are 2 apart along an edge, 2.83 across a face, 3.46 across the cube (identity metric)
+  const AC::Input_surface cube = make_grid_cube(2);
+  const AC::Intrinsic_triangulation t(cube, std::vector<Eigen::Matrix3d>(cube.number_of_vertices(), Eigen::Matrix3d::Identity()));
+  const AC::Feature_graph g = AC::detect_features(cube, 60, 30);
+  BOOST_TEST(AC::internal::corners_to_fix(g, t, 3.9).size() == 8u);  // 2 >= 3.9 / 2: all
+  for(double h : {4.2, 6.0, 8.0}) {
+    const std::vector<std::size_t> fixed = AC::internal::corners_to_fix(g, t, h);
+    BOOST_TEST(!fixed.empty());
+    // the fixed corners are at least h / 2 apart, and every other corner is closer than that to one of them
+    for(std::size_t a : fixed)
+      for(std::size_t b : fixed)
+        if(a != b) BOOST_TEST((cube.points()[a] - cube.points()[b]).norm() >= h / 2);
+    for(std::size_t c : g.corners) {
+      double nearest = 1e300;
+      for(std::size_t a : fixed) nearest = std::min(nearest, (cube.points()[a] - cube.points()[c]).norm());
+      BOOST_TEST(nearest < h / 2);  // 0 for a fixed one
+    }
+    if(h == 8.0) BOOST_TEST(fixed.size() == 1u);  // every corner within 4 of every other
+  }
 }
 
 BOOST_AUTO_TEST_CASE(without_features_nothing_is_kept_or_counted)

@@ -82,7 +82,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *   - `feature_angle` (default 60): angle in degrees between the normals of two triangles above which their
  *     edge is a crease (`detect_features()`; 180: no crease). On a closed surface every corner of the
  *     creases (where 1 or 3 and more meet, or where one turns by more than `corner_angle`) is a fixed site
- *     of the CVT and an output vertex exactly; `Remeshing_result::features` measures what is kept;
+ *     of the CVT and an output vertex exactly, except a corner closer than half the output's edge length
+ *     (in the metric) to another one; `Remeshing_result::features` measures what is kept;
  *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
  *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
  *   - `number_of_threads` (default 0 = all cores) for the CVT integration, the dual mesh's projections and

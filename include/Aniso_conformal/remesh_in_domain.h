@@ -83,7 +83,8 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   const Remeshed_surface out = [&] {
     if constexpr(Domain::kind != Parametric_domain::PLANE) {
       Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads),
-                                                                corner_sites<Domain>(emb, itri, features.corners));
+                                                                corner_sites<Domain>(emb, itri,
+                                                                                     corners_to_fix(features, itri, result.refinement.output_edge_length)));
       Remeshed_surface dual = cvt_and_dual(traits);
       result.boundary_sites = traits.number_of_fixed_sites() - traits.number_of_corners();  // the corners are not boundary
       return dual;

@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_INTERNAL_FEATURES_FIXED_CORNER_SITES_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Feature_graph.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 
 #include <Eigen/Core>
@@ -67,6 +68,36 @@ std::vector<Corner_site<typename Domain::Traits::Point>> corner_sites(const type
     sites.push_back(c);
   }
   return sites;
+}
+
+// The corners to fix: every corner, except one closer than half the output's edge length `h` (in the
+// metric, from the mean of the two square roots, as refine_background() measures) to a corner fixed before
+// it: two fixed sites that close make a sliver or an inverted output triangle (the short crease fragments
+// of a noisy scan: CGAL's elk has 48 pairs of corners closer than half its edge length at 2000 vertices,
+// and failed with an inverted triangle). Corners where 3 or more creases meet come first, then the
+// turns of a crease, then the ends of a crease, each in index order. O(k^2) for k corners.
+inline std::vector<std::size_t> corners_to_fix(const Feature_graph& g, const Intrinsic_triangulation& itri, double h)
+{
+  std::vector<std::size_t> degree(itri.number_of_vertices(), 0);
+  for(const auto& e : g.crease_edges) {
+    ++degree[e[0]];
+    ++degree[e[1]];
+  }
+  auto rank = [&](std::size_t v) { return degree[v] >= 3 ? 0 : degree[v] == 2 ? 1 : 2; };
+  std::vector<std::size_t> order = g.corners;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rank(a) < rank(b); });
+  std::vector<std::size_t> fixed;
+  for(std::size_t v : order) {
+    bool apart = true;
+    for(std::size_t w : fixed)
+      if((0.5 * (itri.Q(int(v)) + itri.Q(int(w))) * (itri.position(int(w)) - itri.position(int(v)))).norm() < 0.5 * h) {
+        apart = false;
+        break;
+      }
+    if(apart) fixed.push_back(v);
+  }
+  std::sort(fixed.begin(), fixed.end());
+  return fixed;
 }
 
 // Invalid_input if the `corners` of the input (kept as output vertices) outnumber the `n` requested
