@@ -644,3 +644,40 @@ BOOST_AUTO_TEST_CASE(tool_refuses_non_manifold_input_saying_what_to_do)
     for(const std::string& part : parts) BOOST_TEST(r.err.find(part) != std::string::npos);
   }
 }
+
+BOOST_AUTO_TEST_CASE(tool_reports_and_keeps_the_corners_of_a_cube)
+{
+  // issue 15: --feature-angle, --no-features, the summary's features line and the report's features object
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10"}).feature_angle == 60.0);
+  BOOST_TEST(!parse({"--input", "a.off", "--vertices", "10"}).no_features);
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--feature-angle", "180"}).feature_angle == 180.0);
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--no-features"}).no_features);
+  BOOST_TEST(parse_error({"--input", "a.off", "--vertices", "10", "--feature-angle", "181"}).find("--feature-angle: must be in [0, 180]") !=
+             std::string::npos);
+  BOOST_TEST(parse_error({"--input", "a.off", "--vertices", "10", "--feature-angle", "30", "--no-features"})
+                 .find("--feature-angle excludes --no-features") != std::string::npos);
+
+  const std::string in = out_dir + "/cli_cube.off", report = out_dir + "/cli_cube.json";
+  Aniso_conformal::IO::write_polygon_soup(
+    in, std::vector<Eigen::Vector3d>{{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+    std::vector<std::array<std::size_t, 3>>{{{0, 2, 1}}, {{0, 3, 2}}, {{4, 5, 6}}, {{4, 6, 7}}, {{0, 1, 5}}, {{0, 5, 4}}, {{1, 2, 6}},
+                                            {{1, 6, 5}}, {{2, 3, 7}}, {{2, 7, 6}}, {{3, 0, 4}}, {{3, 4, 7}}});
+  const Run r = run("--input " + in + " --vertices 300 --report " + report);
+  BOOST_TEST(r.status == 0);
+  BOOST_TEST(r.out.find("features     input 12 curves (crease length 24), 8 corners; output keeps 8 of the corners") != std::string::npos);
+  const nlohmann::json j = read_json(report);
+  BOOST_TEST(j.at("features").at("curves") == 12);
+  BOOST_TEST(j.at("features").at("corners") == 8);
+  BOOST_TEST(j.at("features").at("corners_kept") == 8);
+  BOOST_TEST(j.at("features").at("crease_length") == 24.0);
+  // --no-features: no line, no object
+  const Run none = run("--input " + in + " --vertices 300 --no-features --report " + report);
+  BOOST_TEST(none.status == 0);
+  BOOST_TEST(none.out.find("features") == std::string::npos);
+  BOOST_TEST(!read_json(report).contains("features"));
+  // fewer vertices than corners: exit 2, saying how many and what to change
+  const Run few = run("--input " + in + " --vertices 7");
+  BOOST_TEST(few.status == 2);
+  BOOST_TEST(few.err.find("8 corners") != std::string::npos);
+  BOOST_TEST(few.err.find("--no-features") != std::string::npos);
+}

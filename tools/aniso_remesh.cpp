@@ -88,6 +88,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .random_seed(o.seed)
                     .cvt_method(o.cvt == "lloyd" ? AC::Cvt_method::LLOYD : AC::Cvt_method::LBFGS)
                     .corner_angle(o.corner_angle)
+                    .feature_angle(o.no_features ? 180.0 : o.feature_angle)
                     .planar_boundary(o.planar_boundary == "lengths" ? AC::Planar_boundary::KEEP_LENGTHS
                                      : o.planar_boundary == "shape" ? AC::Planar_boundary::KEEP_SHAPE
                                                                      : AC::Planar_boundary::AUTOMATIC)
@@ -145,6 +146,11 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 AC::domain_name(result.domain));
     std::printf("distance     Hausdorff distance to the input %.3g (%.3g of the bounding-box diagonal)\n",
                 result.hausdorff_distance, result.hausdorff_distance_relative);
+    const AC::Feature_report& ft = result.features;
+    if(ft.crease_edges > 0 || ft.corners > 0)
+      std::printf("features     input %zu curves (crease length %.4g), %zu corners; output keeps %zu of the corners and covers "
+                  "%.1f %% of the crease length\n",
+                  ft.curves, ft.crease_length, ft.corners, ft.corners_kept, 100.0 * ft.covered_share);
     std::printf("quality      G_min %.4f  G_avg %.4f  theta_min %.2f  theta_avg %.2f  %%<30 %.3f\n", q.G_min, q.G_avg,
                 q.theta_min, q.theta_avg, q.percent_below_30);
     std::printf("metric edge  mean length %.4g, normalised length stddev %.3f, min %.3f, max %.3f\n",

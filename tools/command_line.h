@@ -48,6 +48,8 @@ struct Options {
   std::string cvt = "lbfgs";
   long long background_vertices = 0;
   double corner_angle = 30;
+  double feature_angle = 60;  // sharp features: angle between face normals above which an edge is a crease
+  bool no_features = false;   // --no-features: no crease (feature angle 180)
   std::string planar_boundary = "automatic";
   std::string surface_optimization = "repair";
   unsigned threads = 0;
@@ -257,6 +259,15 @@ inline void declare_options(CLI::App& app, Options& o)
   add_real(app, "--corner-angle", o.corner_angle, "DEG",
            "boundary turning angle above which a vertex is kept as a corner (default 30)",
            real("in [0, 180)", [](double x) { return x >= 0 && x < 180; }))
+    ->group(re);
+  CLI::Option* feature_angle =
+    add_real(app, "--feature-angle", o.feature_angle, "DEG",
+             "sharp features: an edge is a crease when the normals of its two triangles differ by more than DEG "
+             "(default 60; 180: none); the report counts the creases and corners the output keeps",
+             real("in [0, 180]", [](double x) { return x >= 0 && x <= 180; }))
+      ->group(re);
+  app.add_flag("--no-features", o.no_features, "no sharp feature: the same as --feature-angle 180")
+    ->excludes(feature_angle)
     ->group(re);
   app.add_option("--planar-boundary", o.planar_boundary,
                  "disks: what the plane's layout keeps of the boundary: lengths (its metric lengths, the paper's u = 0) | "

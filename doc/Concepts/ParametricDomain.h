@@ -21,6 +21,9 @@
  *   vertex of the triangulation, paper eq. 6), `iterations`, `residual` and `flips`;
  * - the domain of stages 4 and 5, `make_traits()`, a model of `ParametricDomainTraits` built from the
  *   triangulation and the embedding, whose `initial_sites(n, seed)` places the sites;
+ * - for a closed domain, `corner_site()`: the site of a vertex of the triangulation in the domain, read from
+ *   the embedding; the pipeline makes each corner of the input's feature graph (`detect_features()`) a
+ *   fixed site there, which the dual maps back exactly onto the corner;
  * - `diagnostics()`: what the domain measured, for `Remeshing_result::domain_diagnostics` (called after
  *   the CVT and the dual, so that the traits can report what they did);
  * - `inverted_triangles_hint()`: the most likely reason, on this domain, for an inverted output triangle
@@ -70,6 +73,12 @@ public:
   static Embedding embed(Aniso_conformal::Intrinsic_triangulation& itri, const NamedParameters& np);
   /// the domain traits for stages 4 and 5; `threads` workers (0: all cores)
   static Traits make_traits(const Aniso_conformal::Intrinsic_triangulation& itri, const Embedding& embedding, unsigned threads);
+  /*!
+   * closed domains only: the site of vertex `v` of the triangulation (a corner of the input's feature
+   * graph), which is corner `corner` of its face `face`, as `embedding` places it (on the sphere its
+   * image; in a periodic domain the image of that face's corner, a point standing for its class)
+   */
+  static Traits::Point corner_site(const Embedding& embedding, int face, int corner, int v);
   /// the domain's own figures (scalars, vectors, matrices) and a one-line summary in words
   static Aniso_conformal::Domain_diagnostics diagnostics(const Embedding& embedding, const Traits& traits);
   /// the likely reason for an inverted output triangle on this domain, in words

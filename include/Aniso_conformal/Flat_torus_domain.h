@@ -47,6 +47,12 @@ struct Flat_torus_domain : internal::Domain_policy_base<Flat_torus_embedding, Eu
   {
     return flat_torus_embedding(itri, np);
   }
+  /// the site of background vertex `v` (a corner of the feature graph, fixed in the CVT): its image in the
+  /// layout, as corner `corner` of background face `face` (a point of the plane standing for its class)
+  static Traits::Point corner_site(const Embedding& emb, int face, int corner, int /*v*/)
+  {
+    return emb.corner_uv[std::size_t(face)][std::size_t(corner)];
+  }
   /// the reduced lattice basis (by rows) and the layout's error
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits&)
   {

@@ -59,6 +59,12 @@ struct Hyperbolic_domain : internal::Domain_policy_base<Hyperbolic_embedding, Hy
   {
     return hyperbolic_embedding(itri, np);
   }
+  /// the site of background vertex `v` (a corner of the feature graph, fixed in the CVT): its image in the
+  /// fundamental domain's layout, as corner `corner` of background face `face` (a point of the hyperboloid)
+  static Traits::Point corner_site(const Embedding& emb, int face, int corner, int /*v*/)
+  {
+    return emb.corner_hyperboloid[std::size_t(face)][std::size_t(corner)];
+  }
   /// the relations' error and the tiles reached (called after the CVT, which grows the band)
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits& traits)
   {

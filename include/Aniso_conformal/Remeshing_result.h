@@ -8,6 +8,7 @@
 #include <Aniso_conformal/IO/Repair_report.h>
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/measure_features.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/optimize_surface_mesh.h>
 #include <Aniso_conformal/parameters.h>
@@ -61,6 +62,9 @@ struct Remeshing_result {
   /// input's vertices to the output
   double hausdorff_distance = 0;
   double hausdorff_distance_relative = 0;          ///< `hausdorff_distance` over the input's bounding-box diagonal
+  /// the input's sharp features (`detect_features()` with `feature_angle` and `corner_angle`) and how many
+  /// of them the output keeps (`measure_features()`); all zero when the input has none
+  Feature_report features;
   /// what the domain measured (flat torus: the lattice; sphere: the angle distortion; hyperbolic disk:
   /// the group's relation error and the tiles reached), written by the report writers as they are
   Domain_diagnostics domain_diagnostics;

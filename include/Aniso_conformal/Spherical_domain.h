@@ -47,6 +47,9 @@ struct Spherical_domain : internal::Domain_policy_base<Spherical_embedding, Sphe
   {
     return spherical_embedding(itri, np);
   }
+  /// the site of background vertex `v` (a corner of the feature graph, fixed in the CVT): its image on the
+  /// sphere (`face`, `corner`: where it is a corner of the background; the sphere does not need them)
+  static Traits::Point corner_site(const Embedding& emb, int /*face*/, int /*corner*/, int v) { return emb.position[std::size_t(v)]; }
   /// the angle distortion of the map (degrees)
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits&)
   {

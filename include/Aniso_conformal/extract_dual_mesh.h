@@ -28,6 +28,9 @@ struct Remeshed_surface {
   std::vector<Eigen::Vector3d> points;                 ///< vertex positions
   std::vector<std::array<std::size_t, 3>> faces;       ///< triangles, oriented like the input
   std::vector<Surface_point> surface_points;           ///< each vertex as a point of the input surface
+  /// the first `fixed_vertices` vertices are the fixed sites of the CVT (boundary sites of the plane, the
+  /// input's corners kept in a closed domain): later stages (`optimize_surface_mesh()`) never move them
+  std::size_t fixed_vertices = 0;
 };
 
 /*!
@@ -67,6 +70,7 @@ Remeshed_surface extract_dual_mesh(const Input_surface& surface, const Intrinsic
     if(!domain.background_location(i, sites[i], face[i], bary[i]))
       throw Convergence_failure("dual mesh: site " + std::to_string(i) + " lies outside the domain", 0);
   const std::size_t fixed = domain.number_of_fixed_sites();
+  out.fixed_vertices = std::min(fixed, ns);
   if(ns > 0) surface.project(surface.points().front());  // builds the AABB tree before the threads query it
   // back onto the input
   internal::parallel_for(ns, number_of_threads, [&](std::size_t i) {

@@ -29,7 +29,7 @@ struct Surface_optimization_report {
   std::size_t rounds = 0;             ///< rounds made (flip passes then one relocation pass each)
   std::size_t flips = 0;              ///< metric-Delaunay (or repairing) edge flips
   std::size_t relocations = 0;        ///< accepted vertex moves along the input
-  std::size_t fixed_vertices = 0;     ///< boundary vertices, never moved
+  std::size_t fixed_vertices = 0;     ///< boundary vertices and the mesh's fixed sites (`Remeshed_surface::fixed_vertices`: boundary sites, kept corners), never moved
   std::size_t inverted_before = 0;    ///< inverted or degenerate triangles before the stage
   std::size_t inverted_after = 0;     ///< the same after it
   double G_min_before = 0;            ///< quality in the metric before the stage (see `Quality_report`)
@@ -69,7 +69,7 @@ struct Surface_optimization_report {
  * can, and a repair may lower those figures. A round that changes nothing ends the stage.
  *
  * Kept: the number of vertices, the topology (flips keep the genus and the boundary; an edge already
- * present is never created), the boundary vertices (fixed), every vertex on the input (moved vertices get
+ * present is never created), the boundary vertices and the first `mesh.fixed_vertices` vertices (the CVT's fixed sites: the input's corners; fixed), every vertex on the input (moved vertices get
  * their new `Surface_point`, planar ones keep z = 0). Faces are rewritten only if an edge was flipped
  * (the same triangles in the same order otherwise). Time O(rounds * (E + V log F)), serial (a user's
  * metric model need not be safe for concurrent calls).

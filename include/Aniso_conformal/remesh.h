@@ -79,7 +79,13 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *   - `random_seed` (default 0): seed of the initial sites; the same seed gives the same output bit for bit;
  *   - `parametric_domain` (default `Parametric_domain::AUTOMATIC`): the domain, refused if it does not
  *     fit the topology;
- *   - `corner_angle` (default 30): boundary turning angle, in degrees, above which a vertex is a corner;
+ *   - `corner_angle` (default 30): boundary turning angle, in degrees, above which a vertex is a corner
+ *     (also the turn that makes a vertex of a crease a corner);
+ *   - `feature_angle` (default 60): angle in degrees between the normals of two triangles above which their
+ *     edge is a crease (`detect_features()`; 180: no crease). On a closed surface every corner of the
+ *     creases (where 1 or 3 and more meet, or where one turns by more than `corner_angle`) is a fixed site
+ *     of the CVT and an output vertex exactly, except a corner closer than half the output's edge length
+ *     (in the metric) to another one; `Remeshing_result::features` measures what is kept;
  *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
  *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
  *   - `surface_optimization` (default `Surface_optimization::REPAIR`): when the final optimisation on the
@@ -93,7 +99,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  * \throws Invalid_input if the topology does not fit `parametric_domain`, the metric is
  *         unusable (non-finite, not symmetric, not positive definite on the tangent plane),
  *         `number_of_vertices` is missing, below the minimum (3 and the number of corners; 4 on the sphere, 7 on the flat torus,
- *         the smallest triangulation of the genus above that: 10 for genus 2, 12 for genus 3)
+ *         the smallest triangulation of the genus above that: 10 for genus 2, 12 for genus 3; on a closed
+ *         surface the number of corners of its creases), or `feature_angle` is not in [0, 180]
  * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
  *         output would have an inverted or degenerate triangle (left after the surface optimisation) or a
  *         wrong topology (it is never returned)

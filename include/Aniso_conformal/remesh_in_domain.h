@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_REMESH_IN_DOMAIN_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Feature_graph.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Remeshing_result.h>
@@ -12,10 +13,12 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
+#include <Aniso_conformal/measure_features.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
@@ -51,9 +54,16 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   result.domain = Domain::kind;
   result.input_vertices = surface.number_of_vertices();
   result.input_faces = surface.number_of_faces();
+  // the input's sharp features (issue 15): measured on the output below, their time counted as the metric's
+  const auto features_start = std::chrono::steady_clock::now();
+  const Feature_graph features = detect_features(surface, options.feature_angle, options.corner_angle);
+  const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
+  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;  // the closed domains keep the corners
+  if(closed) check_vertices_for_corners(features.corners.size(), n, options.feature_angle);
 
   // 1. metric, 2. edge lengths
   Intrinsic_triangulation itri = metric_and_edge_lengths(surface, metric, n, np, vis, result);
+  result.seconds[int(Stage::METRIC)] += features_seconds;
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Stage_timer t3(vis, Stage::EMBEDDING);
@@ -61,18 +71,37 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   record_embedding(emb, result);
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
   const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
-  typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);
-  std::vector<typename Domain::Traits::Point> sites = traits.initial_sites(n, options.random_seed);
-  const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
-  Remeshed_surface out = cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
-  result.seconds[int(Stage::CVT)] += setup_seconds;
-  result.domain_diagnostics = Domain::diagnostics(emb, traits);
+  // the sites (in a closed domain the input's corners first, fixed), the CVT and the dual, with any traits
+  auto cvt_and_dual = [&](auto& traits) {
+    auto sites = traits.initial_sites(n, options.random_seed);
+    const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
+    Remeshed_surface dual = cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+    result.seconds[int(Stage::CVT)] += setup_seconds;
+    result.domain_diagnostics = Domain::diagnostics(emb, traits);
+    return dual;
+  };
+  Remeshed_surface out = [&] {
+    if constexpr(Domain::kind != Parametric_domain::PLANE) {
+      Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads),
+                                                                corner_sites<Domain>(emb, itri,
+                                                                                     corners_to_fix(features, itri, result.refinement.output_edge_length)));
+      Remeshed_surface dual = cvt_and_dual(traits);
+      result.boundary_sites = traits.number_of_fixed_sites() - traits.number_of_corners();  // the corners are not boundary
+      return dual;
+    } else {
+      typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);
+      return cvt_and_dual(traits);
+    }
+  }();
 
   // the optimisation on the surface, in the metric (always, or to repair inverted triangles)
   optimize_output(surface, metric, out, options.surface_optimization, vis, result, options.number_of_threads);
 
   // 6. quality in the metric, orientation against the input, topology and distance to the input
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);
+  const auto measure_start = std::chrono::steady_clock::now();
+  result.features = measure_features(surface, features, out.points, out.faces);
+  result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   return out;
 }
 

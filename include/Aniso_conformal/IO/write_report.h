@@ -69,7 +69,9 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * histogram; `metric_edge_length`: the mean edge length in the metric and the standard deviation, min and
  * max of the edge lengths divided by that mean, i.e. how well the edges conform to the metric;
  * `metric_stretch`: min, median, 95th percentile and max of the metric's stretch ratio at the output
- * vertices, i.e. the anisotropy the mesh realises); `repairs`, only if the input was repaired on reading
+ * vertices, i.e. the anisotropy the mesh realises); `features`, only if the input has sharp features
+ * (`r.features`, `Feature_report`: crease edges, curves and corners of the input, corners kept, crease length,
+ * the length and share of it covered by output edges); `repairs`, only if the input was repaired on reading
  * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
  * triangles they became, points welded and points left unwelded, duplicated faces removed, vertices of no face dropped, faces
  * reoriented, whether a closed surface was turned outward, whether a planar input was clockwise);
@@ -116,6 +118,14 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                     {"median", report_number(q.stretch_median)},
                     {"p95", report_number(q.stretch_p95)},
                     {"max", report_number(q.stretch_max)}}}};
+  if(r.features.crease_edges > 0 || r.features.corners > 0)  // absent: the input has no sharp feature
+    j["features"] = {{"crease_edges", r.features.crease_edges},
+                     {"curves", r.features.curves},
+                     {"corners", r.features.corners},
+                     {"corners_kept", r.features.corners_kept},
+                     {"crease_length", report_number(r.features.crease_length)},
+                     {"covered_length", report_number(r.features.covered_length)},
+                     {"covered_share", report_number(r.features.covered_share)}};
   if(r.repairs.any())
     j["repairs"] = {{"input_vertices", r.repairs.input_points},
                     {"input_faces", r.repairs.input_polygons},

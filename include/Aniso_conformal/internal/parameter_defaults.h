@@ -22,6 +22,7 @@ constexpr unsigned number_of_iterations = 100;      // CVT iterations (stage 4)
 constexpr Cvt_method cvt_method = Cvt_method::LBFGS;
 constexpr unsigned random_seed = 0;
 constexpr double corner_angle = 30.0;                // degrees
+constexpr double feature_angle = 60.0;               // degrees between face normals; 180: no crease
 constexpr unsigned number_of_threads = 0;           // 0: all cores
 constexpr unsigned max_adjustment_rounds = 50;      // stage 2
 constexpr unsigned max_flips_per_edge = 50;         // every intrinsic flip pass (stages 2 and 3)
@@ -43,6 +44,7 @@ ANISO_CONFORMAL_PARAMETER_GETTER(number_of_iterations, CGAL::internal_np::number
 ANISO_CONFORMAL_PARAMETER_GETTER(cvt_method, internal_np::cvt_method, Cvt_method)
 ANISO_CONFORMAL_PARAMETER_GETTER(random_seed, CGAL::internal_np::random_seed, unsigned)
 ANISO_CONFORMAL_PARAMETER_GETTER(corner_angle, internal_np::corner_angle, double)
+ANISO_CONFORMAL_PARAMETER_GETTER(feature_angle, internal_np::feature_angle, double)
 ANISO_CONFORMAL_PARAMETER_GETTER(number_of_threads, internal_np::number_of_threads, unsigned)
 ANISO_CONFORMAL_PARAMETER_GETTER(max_adjustment_rounds, internal_np::max_adjustment_rounds, std::size_t)
 ANISO_CONFORMAL_PARAMETER_GETTER(max_flips_per_edge, internal_np::max_flips_per_edge, std::size_t)

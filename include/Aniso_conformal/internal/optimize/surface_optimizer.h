@@ -123,7 +123,7 @@ public:
     for(std::size_t i = 0; i < n; ++i) m_Q[i] = symmetric_sqrt(m_metric.tensor(m_out.surface_points[i]));
     m_fixed.assign(n, 0);
     for(V v : m_mesh.vertices())
-      if(m_mesh.is_isolated(v) || m_mesh.is_border(v, false)) m_fixed[v.idx()] = 1;
+      if(m_mesh.is_isolated(v) || m_mesh.is_border(v, false) || std::size_t(v.idx()) < m_out.fixed_vertices) m_fixed[v.idx()] = 1;
     return true;
   }
 

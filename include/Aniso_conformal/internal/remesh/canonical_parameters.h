@@ -54,6 +54,7 @@ struct Remeshing_options {
   Cvt_method cvt_method = defaults::cvt_method;
   unsigned random_seed = defaults::random_seed;
   double corner_angle = defaults::corner_angle;
+  double feature_angle = defaults::feature_angle;
   unsigned number_of_threads = defaults::number_of_threads;
   std::size_t max_adjustment_rounds = defaults::max_adjustment_rounds;
   std::size_t max_flips_per_edge = defaults::max_flips_per_edge;
@@ -71,6 +72,7 @@ struct Remeshing_options {
     o.cvt_method = internal::cvt_method(np);
     o.random_seed = internal::random_seed(np);
     o.corner_angle = internal::corner_angle(np);
+    o.feature_angle = internal::feature_angle(np);
     o.number_of_threads = internal::number_of_threads(np);
     o.max_adjustment_rounds = internal::max_adjustment_rounds(np);
     o.max_flips_per_edge = internal::max_flips_per_edge(np);
@@ -90,6 +92,7 @@ inline auto canonical_parameters(const Remeshing_options& o, Visitor_handle& vis
       .cvt_method(o.cvt_method)
       .random_seed(o.random_seed)
       .corner_angle(o.corner_angle)
+      .feature_angle(o.feature_angle)
       .number_of_threads(o.number_of_threads)
       .max_adjustment_rounds(o.max_adjustment_rounds)
       .max_flips_per_edge(o.max_flips_per_edge)

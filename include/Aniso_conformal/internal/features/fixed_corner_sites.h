@@ -1,0 +1,170 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_FEATURES_FIXED_CORNER_SITES_H
+#define ANISO_CONFORMAL_INTERNAL_FEATURES_FIXED_CORNER_SITES_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Feature_graph.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+// The corners of the input's feature graph (Feature_graph.h) as fixed sites of the CVT, once for every
+// closed domain (issue 15, item 2): each corner's site is its image in the canonical domain, read from the
+// embedding at one of its background corners (the domain policy's corner_site()); the site never moves
+// (the CVT keeps the first number_of_fixed_sites() sites where they are), and the dual mesh maps it back
+// exactly onto the input vertex, because its background location is that corner with barycentric
+// coordinate exactly 1 (extract_dual_mesh() then takes the input vertex itself).
+
+namespace Aniso_conformal {
+namespace internal {
+
+// a corner of the input as a site: a background face holding it, its corner index there, its point in the domain
+template <typename Point>
+struct Corner_site {
+  int face = -1;
+  int corner = 0;
+  Point site;
+};
+
+// The background halfedge leaving the input vertex `v` (a vertex of `itri` with the same index: the
+// intrinsic triangulation keeps the input's vertices first), as (face, corner index of v there).
+inline std::pair<int, int> background_corner_of(const Intrinsic_triangulation& itri, std::size_t v)
+{
+  if(v >= itri.number_of_vertices() || itri.input_vertex(int(v)) != int(v))
+    throw Internal_error("fixed corner sites: input vertex " + std::to_string(v) + " is not the background's vertex " +
+                         std::to_string(v));
+  const std::vector<int> out = itri.outgoing_halfedges(int(v));
+  if(out.empty()) throw Internal_error("fixed corner sites: input vertex " + std::to_string(v) + " has no background face");
+  const int f = out.front() / 3, k = out.front() % 3;  // halfedge 3 f + k leaves corner k of face f
+  if(itri.face_vertices(std::size_t(f))[std::size_t(k)] != int(v))
+    throw Internal_error("fixed corner sites: the halfedge leaving vertex " + std::to_string(v) + " does not start there");
+  return {f, k};
+}
+
+// The corners (input vertex indices) as sites of the closed domain `Domain` (a model of ParametricDomain
+// with a static corner_site(emb, face, corner, v)), after its embedding `emb` of `itri`
+template <typename Domain>
+std::vector<Corner_site<typename Domain::Traits::Point>> corner_sites(const typename Domain::Embedding& emb,
+                                                                       const Intrinsic_triangulation& itri,
+                                                                       const std::vector<std::size_t>& corners)
+{
+  std::vector<Corner_site<typename Domain::Traits::Point>> sites;
+  sites.reserve(corners.size());
+  for(std::size_t v : corners) {
+    const std::pair<int, int> fk = background_corner_of(itri, v);
+    Corner_site<typename Domain::Traits::Point> c;
+    c.face = fk.first;
+    c.corner = fk.second;
+    c.site = Domain::corner_site(emb, fk.first, fk.second, int(v));
+    sites.push_back(c);
+  }
+  return sites;
+}
+
+// The corners to fix: every corner, except one closer than half the output's edge length `h` (in the
+// metric, from the mean of the two square roots, as refine_background() measures) to a corner fixed before
+// it: two fixed sites that close make a sliver or an inverted output triangle (the short crease fragments
+// of a noisy scan: CGAL's elk has 48 pairs of corners closer than half its edge length at 2000 vertices,
+// and failed with an inverted triangle). Corners where 3 or more creases meet come first, then the
+// turns of a crease, then the ends of a crease, each in index order. O(k^2) for k corners.
+inline std::vector<std::size_t> corners_to_fix(const Feature_graph& g, const Intrinsic_triangulation& itri, double h)
+{
+  std::vector<std::size_t> degree(itri.number_of_vertices(), 0);
+  for(const auto& e : g.crease_edges) {
+    ++degree[e[0]];
+    ++degree[e[1]];
+  }
+  auto rank = [&](std::size_t v) { return degree[v] >= 3 ? 0 : degree[v] == 2 ? 1 : 2; };
+  std::vector<std::size_t> order = g.corners;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rank(a) < rank(b); });
+  std::vector<std::size_t> fixed;
+  for(std::size_t v : order) {
+    bool apart = true;
+    for(std::size_t w : fixed)
+      if((0.5 * (itri.Q(int(v)) + itri.Q(int(w))) * (itri.position(int(w)) - itri.position(int(v)))).norm() < 0.5 * h) {
+        apart = false;
+        break;
+      }
+    if(apart) fixed.push_back(v);
+  }
+  std::sort(fixed.begin(), fixed.end());
+  return fixed;
+}
+
+// Invalid_input if the `corners` of the input (kept as output vertices) outnumber the `n` requested
+inline void check_vertices_for_corners(std::size_t corners, std::size_t n, double feature_angle)
+{
+  if(corners > n) {
+    char angle[32];
+    std::snprintf(angle, sizeof(angle), "%g", feature_angle);
+    throw Invalid_input("remesh(): the input has " + std::to_string(corners) + " corners (where creases sharper than the feature angle, " +
+                        angle + " degrees, meet or turn), each kept as an output vertex, but only " +
+                        std::to_string(n) + " output vertices were requested: ask for at least " + std::to_string(corners) +
+                        ", or raise the feature angle (feature_angle; the tool's --feature-angle, or --no-features) to keep fewer corners");
+  }
+}
+
+// Domain traits of a closed domain with the input's corners as fixed sites: the first sites are the
+// corners (in the order given), the rest come from the traits' own initial_sites(); everything else is the
+// traits' own. With no corner it is the traits exactly (same sites, same output bit for bit).
+template <typename Traits>
+class Traits_with_fixed_corners : public Traits {
+public:
+  typedef typename Traits::Point Point;
+
+  // the domain's traits (from its make_traits()) and the corners' sites (corner_sites())
+  Traits_with_fixed_corners(Traits&& traits, std::vector<Corner_site<Point>> corners)
+    : Traits(std::move(traits)), m_corners(std::move(corners))
+  {}
+
+  // the corners, then `n - corners` sites of the traits (at least as many as it needs, the first kept)
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
+  {
+    const std::size_t k = m_corners.size();
+    if(k == 0) return Traits::initial_sites(n, seed);
+    if(n < k)
+      throw Invalid_input("remesh(): the input has " + std::to_string(k) + " corners, each kept as an output vertex, but " +
+                          std::to_string(n) + " output vertices were requested");
+    std::vector<Point> sites;
+    sites.reserve(n);
+    for(const auto& c : m_corners) sites.push_back(c.site);
+    if(n > k) {
+      // a domain needs a few sites (the sphere 4): ask for that many and keep the first n - k
+      std::vector<Point> free = Traits::initial_sites(std::max<std::size_t>(n - k, 4), seed);
+      free.resize(n - k);
+      sites.insert(sites.end(), free.begin(), free.end());
+    }
+    return sites;
+  }
+  // the corners (a closed domain fixes no other site)
+  std::size_t number_of_fixed_sites() const { return m_corners.size(); }
+  // a corner's site is exactly its background corner; the other sites are located by the traits
+  bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const
+  {
+    if(i < m_corners.size()) {
+      face = m_corners[i].face;
+      bary = Eigen::Vector3d::Zero();
+      bary[m_corners[i].corner] = 1.0;
+      return true;
+    }
+    return Traits::background_location(i, site, face, bary);
+  }
+  std::size_t number_of_corners() const { return m_corners.size(); }
+
+private:
+  std::vector<Corner_site<Point>> m_corners;
+};
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_FEATURES_FIXED_CORNER_SITES_H

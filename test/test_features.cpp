@@ -1,0 +1,340 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Sharp features (issue 15): the feature graph of an input (detect_features(): creases by the angle between
+// face normals, corners, curves and loops), its measurement on an output (measure_features(): corners
+// kept, crease length covered by output edges) on meshes whose answer is known by hand, and the whole
+// pipeline on a cube through the sphere (the only domain this module compiles).
+
+#define BOOST_TEST_MODULE Aniso_conformal_features
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Feature_graph.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/features/fixed_corner_sites.h>
+#include <Aniso_conformal/Spherical_domain.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/measure_features.h>
+#include <Aniso_conformal/remesh_in_domain.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace AC = Aniso_conformal;
+
+namespace {
+
+// The surface of the cube [-1, 1]^3, each face an n x n grid of squares cut by parallel diagonals,
+// oriented outward (as test_sphere's): 12 straight creases of length 2 meeting at 8 corners
+AC::Input_surface make_grid_cube(int n)
+{
+  std::map<std::array<int, 3>, std::size_t> index;
+  std::vector<Eigen::Vector3d> points;
+  auto vertex = [&](std::array<int, 3> g) {
+    const auto it = index.find(g);
+    if(it != index.end()) return it->second;
+    points.push_back(Eigen::Vector3d(g[0], g[1], g[2]) * (2.0 / n) - Eigen::Vector3d::Ones());
+    return index[g] = points.size() - 1;
+  };
+  std::vector<AC::Input_surface::Face> faces;
+  for(int a = 0; a < 3; ++a)
+    for(int side : {0, n})
+      for(int i = 0; i < n; ++i)
+        for(int j = 0; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> g;
+            g[std::size_t(a)] = side;
+            g[std::size_t((a + 1) % 3)] = i + di;
+            g[std::size_t((a + 2) % 3)] = j + dj;
+            return vertex(g);
+          };
+          const std::size_t p00 = at(0, 0), p10 = at(1, 0), p11 = at(1, 1), p01 = at(0, 1);
+          if(side == n) {
+            faces.push_back({{p00, p10, p11}});
+            faces.push_back({{p00, p11, p01}});
+          } else {
+            faces.push_back({{p00, p11, p10}});
+            faces.push_back({{p00, p01, p11}});
+          }
+        }
+  return AC::Input_surface(points, faces);
+}
+
+// A closed prism over a regular k-gon (radius 1, height 2), its sides split into `rows` rows of quads, its
+// caps fans around a centre vertex: 2 closed crease loops (the rims, turning by 360/k degrees at each
+// vertex) and k vertical creases between them when the sides are flat enough to be creases.
+AC::Input_surface make_capped_prism(int k, int rows)
+{
+  std::vector<Eigen::Vector3d> points;
+  const double pi = 3.14159265358979323846;
+  for(int r = 0; r <= rows; ++r)
+    for(int i = 0; i < k; ++i)
+      points.push_back(Eigen::Vector3d(std::cos(2 * pi * i / k), std::sin(2 * pi * i / k), -1 + 2.0 * r / rows));
+  const std::size_t bottom = points.size(), top = bottom + 1;
+  points.push_back(Eigen::Vector3d(0, 0, -1));
+  points.push_back(Eigen::Vector3d(0, 0, 1));
+  std::vector<AC::Input_surface::Face> faces;
+  auto at = [k](int r, int i) { return std::size_t(r * k + (i % k)); };
+  for(int r = 0; r < rows; ++r)
+    for(int i = 0; i < k; ++i) {
+      faces.push_back({{at(r, i), at(r, i + 1), at(r + 1, i + 1)}});
+      faces.push_back({{at(r, i), at(r + 1, i + 1), at(r + 1, i)}});
+    }
+  for(int i = 0; i < k; ++i) {
+    faces.push_back({{bottom, at(0, i + 1), at(0, i)}});
+    faces.push_back({{top, at(rows, i), at(rows, i + 1)}});
+  }
+  return AC::Input_surface(points, faces);
+}
+
+const AC::Input_surface cube12({{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+                               {{{0, 2, 1}}, {{0, 3, 2}}, {{4, 5, 6}}, {{4, 6, 7}}, {{0, 1, 5}}, {{0, 5, 4}}, {{1, 2, 6}}, {{1, 6, 5}},
+                                {{2, 3, 7}}, {{2, 7, 6}}, {{3, 0, 4}}, {{3, 4, 7}}});
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(the_cube_has_twelve_creases_and_eight_corners)
+{
+  for(int n : {1, 4}) {
+    const AC::Input_surface cube = make_grid_cube(n);
+    const AC::Feature_graph g = AC::detect_features(cube, 60, 30);
+    BOOST_TEST(g.crease_edges.size() == std::size_t(12 * n));  // the face diagonals are flat
+    BOOST_TEST(g.corners.size() == 8u);
+    BOOST_TEST(g.curves.size() == 12u);
+    for(const AC::Feature_curve& c : g.curves) {
+      BOOST_TEST(!c.closed);
+      BOOST_TEST(c.vertices.size() == std::size_t(n + 1));
+      BOOST_TEST(std::abs(c.length - 2) < 1e-12);
+      BOOST_TEST(cube.points()[c.vertices.front()].cwiseAbs().minCoeff() == 1.0);  // from corner to corner
+      BOOST_TEST(cube.points()[c.vertices.back()].cwiseAbs().minCoeff() == 1.0);
+    }
+    BOOST_TEST(std::abs(g.crease_length() - 24) < 1e-12);
+    // the normals differ by 90 degrees across the cube's edges: creases up to a feature angle of 90
+    BOOST_TEST(AC::detect_features(cube, 89, 30).corners.size() == 8u);
+    BOOST_TEST(AC::detect_features(cube, 91, 30).empty());
+    BOOST_TEST(AC::detect_features(cube, 180, 30).empty());  // feature_angle(180): no feature
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_rims_of_a_capped_prism_are_closed_loops_or_chains_of_corners)
+{
+  // 24 sides: the sides' normals differ by 15 degrees (no crease between them), the rims turn by 15
+  // degrees at each vertex (no corner under the default 30): two closed loops of length 48 sin(7.5 deg)
+  const AC::Feature_graph g = AC::detect_features(make_capped_prism(24, 3), 60, 30);
+  BOOST_TEST(g.curves.size() == 2u);
+  BOOST_TEST(g.corners.empty());
+  const double rim = 24 * 2 * std::sin(3.14159265358979323846 / 24);
+  for(const AC::Feature_curve& c : g.curves) {
+    BOOST_TEST(c.closed);
+    BOOST_TEST(c.vertices.size() == 25u);
+    BOOST_TEST(c.vertices.front() == c.vertices.back());
+    BOOST_TEST(std::abs(c.length - rim) < 1e-12);
+  }
+  // a corner angle of 10 degrees makes every rim vertex a corner: 2 x 24 curves of one edge
+  const AC::Feature_graph h = AC::detect_features(make_capped_prism(24, 3), 60, 10);
+  BOOST_TEST(h.corners.size() == 48u);
+  BOOST_TEST(h.curves.size() == 48u);
+  // 4 sides: the box's vertical edges are creases too, the rims turn by 90 degrees: 8 corners, 12 curves
+  const AC::Feature_graph box = AC::detect_features(make_capped_prism(4, 2), 60, 30);
+  BOOST_TEST(box.corners.size() == 8u);
+  BOOST_TEST(box.curves.size() == 12u);
+  BOOST_TEST(box.crease_edges.size() == 16u);  // 8 rim edges, 4 vertical creases of 2 edges
+}
+
+BOOST_AUTO_TEST_CASE(bad_angles_are_refused)
+{
+  BOOST_CHECK_THROW(AC::detect_features(cube12, -1, 30), AC::Invalid_input);
+  BOOST_CHECK_THROW(AC::detect_features(cube12, 181, 30), AC::Invalid_input);
+  BOOST_CHECK_THROW(AC::detect_features(cube12, std::nan(""), 30), AC::Invalid_input);
+  BOOST_CHECK_THROW(AC::detect_features(cube12, 60, 180), AC::Invalid_input);
+  const AC::Feature_graph g = AC::detect_features(cube12, 60, 30);
+  BOOST_CHECK_THROW(AC::measure_features(cube12, g, cube12.points(), {{{0, 1, 8}}}), AC::Invalid_input);
+}
+
+BOOST_AUTO_TEST_CASE(measurement_of_known_outputs)
+{
+  const AC::Input_surface cube = make_grid_cube(4);
+  const AC::Feature_graph g = AC::detect_features(cube, 60, 30);
+  // the 12-triangle cube as an output of the fine one: every corner kept, every crease one output edge
+  const AC::Feature_report all = AC::measure_features(cube, g, cube12.points(), cube12.faces());
+  BOOST_TEST(all.curves == 12u);
+  BOOST_TEST(all.corners == 8u);
+  BOOST_TEST(all.crease_edges == 48u);
+  BOOST_TEST(all.corners_kept == 8u);
+  BOOST_TEST(std::abs(all.crease_length - 24) < 1e-12);
+  BOOST_TEST(std::abs(all.covered_share - 1) < 1e-12);
+  // the fine cube as its own output: the same, each crease covered by 4 edges
+  const AC::Feature_report self = AC::measure_features(cube, g, cube.points(), cube.faces());
+  BOOST_TEST(self.corners_kept == 8u);
+  BOOST_TEST(std::abs(self.covered_length - 24) < 1e-12);
+  // corner 0 of the coarse cube moved inside: 7 corners kept, its 3 edges (6 of the 24) no longer cover
+  std::vector<Eigen::Vector3d> moved = cube12.points();
+  moved[0] = Eigen::Vector3d(-0.99, -0.99, -0.99);
+  const AC::Feature_report seven = AC::measure_features(cube, g, moved, cube12.faces());
+  BOOST_TEST(seven.corners_kept == 7u);
+  BOOST_TEST(std::abs(seven.covered_length - 18) < 1e-12);
+  BOOST_TEST(std::abs(seven.covered_share - 0.75) < 1e-12);
+  // a corner missed by 1e-6 is not kept (the tolerance is 1e-9 of the diagonal)
+  moved[0] = Eigen::Vector3d(-1 + 1e-6, -1, -1);
+  BOOST_TEST(AC::measure_features(cube, g, moved, cube12.faces()).corners_kept == 7u);
+  // an output edge between two points of one crease covers the piece between them, once however many
+  // edges cover it: the crease from (-1, -1, -1) to (1, -1, -1) carries the points x = -0.5 and x = 0.25
+  const std::vector<Eigen::Vector3d> pts = {{-0.5, -1, -1}, {0.25, -1, -1}, {0, 0, 0}};
+  const AC::Feature_report piece = AC::measure_features(cube, g, pts, {{{0, 1, 2}}, {{1, 0, 2}}});
+  BOOST_TEST(std::abs(piece.covered_length - 0.75) < 1e-12);
+  BOOST_TEST(piece.corners_kept == 0u);
+  // an edge between two crease points across a face of the cube covers nothing (not on one curve)
+  const std::vector<Eigen::Vector3d> across = {{-0.5, -1, -1}, {-0.5, 1, -1}, {0, 0, 0}};
+  BOOST_TEST(AC::measure_features(cube, g, across, {{{0, 1, 2}}}).covered_length == 0.0);
+  // nothing to measure on a surface without features
+  const AC::Feature_report none = AC::measure_features(cube, AC::detect_features(cube, 180, 30), cube.points(), cube.faces());
+  BOOST_TEST(none.curves == 0u);
+  BOOST_TEST(none.corners_kept == 0u);
+  BOOST_TEST(none.covered_share == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(a_chord_across_a_closed_rim_covers_only_what_it_follows)
+{
+  // the rim of the 24-gon prism: output edges between consecutive rim vertices cover it; one between
+  // opposite rim vertices (through the cap) covers nothing
+  const AC::Input_surface prism = make_capped_prism(24, 3);
+  const AC::Feature_graph g = AC::detect_features(prism, 60, 30);
+  const AC::Feature_curve& rim = g.curves[0];
+  std::vector<Eigen::Vector3d> pts;
+  for(std::size_t i = 0; i < 24; ++i) pts.push_back(prism.points()[rim.vertices[i]]);
+  std::vector<std::array<std::size_t, 3>> faces;
+  for(std::size_t i = 0; i + 2 < 24; ++i) faces.push_back({{0, i + 1, i + 2}});  // a fan: 0-i chords, and the rim
+  const AC::Feature_report r = AC::measure_features(prism, g, pts, faces);
+  // the rim once: the short chords of the fan follow it (they cover nothing new), the long ones cut across
+  BOOST_TEST(std::abs(r.covered_length - rim.length) < 1e-12);
+  BOOST_TEST(std::abs(r.covered_share - 0.5) < 1e-12);  // of two rims
+  // one triangle 0, 6, 12 on the rim: its edges span 90 and 180 degrees of it (1.107 and 1.571 times their
+  // length): they cut across the cap and cover nothing
+  const AC::Feature_report across = AC::measure_features(prism, g, pts, {{{0, 6, 12}}});
+  BOOST_TEST(across.covered_length == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(remeshing_a_cube_keeps_its_eight_corners)
+{
+  // the corners are fixed sites of the CVT, mapped back exactly onto the input's corners (issue 15, item 2)
+  const AC::Input_surface cube = make_grid_cube(4);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(cube, AC::Uniform_metric(), r,
+                                                                               AC::parameters::number_of_vertices(std::size_t(500)));
+  BOOST_TEST(out.points.size() == 500u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.features.curves == 12u);
+  BOOST_TEST(r.features.corners == 8u);
+  BOOST_TEST(r.features.crease_edges == 48u);
+  BOOST_TEST(std::abs(r.features.crease_length - 24) < 1e-12);
+  BOOST_TEST(r.features.corners_kept == 8u);
+  BOOST_TEST(r.cvt.energy.size() > 1u);
+  // exactly: each corner is an output vertex, bit for bit, and its surface point is the input vertex
+  std::size_t exact = 0;
+  for(std::size_t i = 0; i < out.points.size(); ++i)
+    if(out.points[i].cwiseAbs() == Eigen::Vector3d(1, 1, 1)) {
+      ++exact;
+      BOOST_TEST(out.surface_points[i].vertices[0] == out.surface_points[i].vertices[1]);
+      BOOST_TEST((cube.points()[out.surface_points[i].vertices[0]] == out.points[i]));
+    }
+  BOOST_TEST(exact == 8u);
+  // the report agrees with a measurement made apart
+  const AC::Feature_report check = AC::measure_features(cube, AC::detect_features(cube, 60, 30), out.points, out.faces);
+  BOOST_TEST(check.corners_kept == 8u);
+  BOOST_TEST(check.covered_length == r.features.covered_length);
+  BOOST_TEST(r.quality.G_avg >= 0.85);
+  BOOST_TEST_MESSAGE("cube to 500: " << r.features.corners_kept << " of 8 corners kept, " << 100 * r.features.covered_share
+                                     << " % of the crease length covered, Hausdorff " << r.hausdorff_distance_relative << ", G_avg "
+                                     << r.quality.G_avg << ", theta_min " << r.quality.theta_min);
+}
+
+BOOST_AUTO_TEST_CASE(the_surface_optimisation_keeps_the_corners)
+{
+  // the surface optimisation moves vertices along the input: never the CVT's fixed sites (the corners),
+  // which are the first Remeshed_surface::fixed_vertices vertices
+  const AC::Input_surface cube = make_grid_cube(4);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
+    cube, AC::Uniform_metric(), r,
+    AC::parameters::number_of_vertices(std::size_t(500)).surface_optimization(AC::Surface_optimization::ALWAYS));
+  BOOST_TEST(r.surface_optimization.ran);
+  BOOST_TEST(r.surface_optimization.relocations > 0u);  // it did move vertices
+  BOOST_TEST(out.fixed_vertices == 8u);
+  BOOST_TEST(r.surface_optimization.fixed_vertices == 8u);
+  BOOST_TEST(r.features.corners_kept == 8u);
+  for(std::size_t i = 0; i < out.fixed_vertices; ++i) BOOST_TEST((out.points[i].cwiseAbs() == Eigen::Vector3d(1, 1, 1)));
+  BOOST_TEST(r.inverted_triangles == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(corners_closer_than_half_an_output_edge_are_not_all_fixed)
+{
+  // the cube's corners are 2 apart along an edge, 2.83 across a face, 3.46 across the cube (identity metric)
+  const AC::Input_surface cube = make_grid_cube(2);
+  const AC::Intrinsic_triangulation t(cube, std::vector<Eigen::Matrix3d>(cube.number_of_vertices(), Eigen::Matrix3d::Identity()));
+  const AC::Feature_graph g = AC::detect_features(cube, 60, 30);
+  BOOST_TEST(AC::internal::corners_to_fix(g, t, 3.9).size() == 8u);  // 2 >= 3.9 / 2: all
+  for(double h : {4.2, 6.0, 8.0}) {
+    const std::vector<std::size_t> fixed = AC::internal::corners_to_fix(g, t, h);
+    BOOST_TEST(!fixed.empty());
+    // the fixed corners are at least h / 2 apart, and every other corner is closer than that to one of them
+    for(std::size_t a : fixed)
+      for(std::size_t b : fixed)
+        if(a != b) BOOST_TEST((cube.points()[a] - cube.points()[b]).norm() >= h / 2);
+    for(std::size_t c : g.corners) {
+      double nearest = 1e300;
+      for(std::size_t a : fixed) nearest = std::min(nearest, (cube.points()[a] - cube.points()[c]).norm());
+      BOOST_TEST(nearest < h / 2);  // 0 for a fixed one
+    }
+    if(h == 8.0) BOOST_TEST(fixed.size() == 1u);  // every corner within 4 of every other
+  }
+}
+
+BOOST_AUTO_TEST_CASE(without_features_nothing_is_kept_or_counted)
+{
+  // feature_angle(180), the tool's --no-features: no feature, no fixed site, the corners rounded off
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
+    make_grid_cube(4), AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(500)).feature_angle(180.0));
+  BOOST_TEST(r.features.curves == 0u);
+  BOOST_TEST(r.features.corners == 0u);
+  BOOST_TEST(r.features.crease_length == 0.0);
+  std::size_t at_corner = 0;
+  for(const auto& p : out.points) at_corner += p.cwiseAbs() == Eigen::Vector3d(1, 1, 1);
+  BOOST_TEST(at_corner == 0u);
+  // measured against the cube's features, that output keeps none of them
+  BOOST_TEST(AC::measure_features(make_grid_cube(4), AC::detect_features(make_grid_cube(4), 60, 30), out.points, out.faces).corners_kept == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(too_few_vertices_for_the_corners_or_a_bad_angle_are_refused)
+{
+  AC::Remeshing_result r;
+  std::string message;
+  try {
+    AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(6)));
+  } catch(const AC::Invalid_input& e) {
+    message = e.what();
+  }
+  BOOST_TEST(message.find("8 corners") != std::string::npos);
+  BOOST_TEST(message.find("at least 8") != std::string::npos);
+  BOOST_TEST(message.find("feature angle") != std::string::npos);
+  // the same request without features is valid (whether 6 vertices can then be built is another question)
+  bool invalid = false;
+  try {
+    AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), r,
+                                               AC::parameters::number_of_vertices(std::size_t(6)).feature_angle(180.0));
+  } catch(const AC::Invalid_input&) {
+    invalid = true;
+  } catch(const AC::Remeshing_failure&) {
+  }
+  BOOST_TEST(!invalid);
+  BOOST_CHECK_THROW(AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), r,
+                                                              AC::parameters::number_of_vertices(std::size_t(500)).feature_angle(200.0)),
+                    AC::Invalid_input);
+}
