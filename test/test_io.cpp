@@ -443,15 +443,18 @@ BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
   BOOST_TEST(r.quality.theta_min > 5.0);
   BOOST_TEST(r.quality.G_avg > 0.8);
 
-  // at the paper's s = 0.5 this slice cannot be remeshed well: a clear exception, never flat triangles
-  bool refused = false;
-  try {
-    remesh_plane(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
-               AC::parameters::number_of_vertices(std::size_t(3000)));
-  } catch(const AC::Convergence_failure& e) {
-    refused = std::string(e.what()).find("degenerate triangles") != std::string::npos && e.residual() > 0;
-  }
-  BOOST_TEST(refused);
+  // at the paper's s = 0.5: the dual mesh has inverted triangles (23), which the surface optimisation
+  // repairs (before it, a refusal); the output is valid, though its smallest angle is still far below the
+  // issue's bar of 20 degrees (4.4 measured)
+  const auto strong = remesh_plane(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
+                                   AC::parameters::number_of_vertices(std::size_t(3000)));
+  BOOST_TEST(strong.points.size() == 3000u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.surface_optimization.ran);
+  BOOST_TEST(r.surface_optimization.inverted_before > 0u);
+  BOOST_TEST(r.surface_optimization.inverted_after == 0u);
+  BOOST_TEST(r.quality.theta_min > 0.0);
+  BOOST_TEST(r.quality.G_avg > 0.7);
 }
 
 // --------------------------------------------------------------------------- square background
