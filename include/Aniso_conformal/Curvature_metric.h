@@ -113,42 +113,15 @@ public:
     if(!(o.feature_angle > 0 && o.feature_angle <= 180))
       throw Invalid_input("curvature metric: feature_angle must be in (0, 180] degrees");
     const std::size_t n = s.number_of_vertices();
-    const auto& P = s.points();
     const auto& N = s.vertex_normals();
     const unsigned threads = o.number_of_threads;
 
-    // 1. normal-cycle curvature tensors
-    std::vector<Tensor> T(n, Tensor::Zero());
-    std::vector<double> area(n, 0.0);
-    std::vector<Eigen::Vector3d> fn(s.number_of_faces());
-    for(std::size_t f = 0; f < s.number_of_faces(); ++f) {
-      const auto& t = s.faces()[f];
-      const Eigen::Vector3d c = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]);
-      fn[f] = c.normalized();
-      for(int k = 0; k < 3; ++k) area[t[k]] += c.norm() / 6;
-    }
-    // each interior edge once, in the order of its (smaller, larger) end, with the faces on its two sides
+    // 1. normal-cycle curvature tensors, and the crease edges and vertices (dihedral angle above feature_angle)
     const Directed_edges out(s);
-    const double crease_angle = o.feature_angle * 3.14159265358979323846 / 180;
-    std::vector<char> crease_edge(out.head.size(), 0), crease_vertex(n, 0);
-    for(std::size_t a = 0; a < n; ++a)
-      for(std::uint32_t i = out.start[a]; i < out.start[a + 1]; ++i) {
-        const std::size_t b = out.head[i];
-        if(a > b) continue;
-        const std::uint32_t twin = out.find(b, a);
-        if(twin == out.none) continue;  // boundary edge: no dihedral angle
-        const Eigen::Vector3d d = P[b] - P[a];
-        const double len = d.norm();
-        const Eigen::Vector3d u = d / len, n1 = fn[out.face[i]], n2 = fn[out.face[twin]];
-        const double beta = std::atan2(n1.cross(n2).dot(u), n1.dot(n2));
-        if(std::abs(beta) > crease_angle && o.feature_angle < 180) {
-          crease_edge[i] = crease_edge[twin] = 1;
-          crease_vertex[a] = crease_vertex[b] = 1;
-        }
-        const Tensor contribution = beta * len / 2 * u * u.transpose();
-        T[a] += contribution;
-        T[b] += contribution;
-      }
+    std::vector<Tensor> T;
+    std::vector<double> area;
+    std::vector<char> crease_edge, crease_vertex;
+    normal_cycle_tensors(s, out, o.feature_angle, T, area, crease_edge, crease_vertex);
     m_kmin.resize(n);
     m_kmax.resize(n);
     std::vector<Tensor> M(n);
@@ -174,79 +147,8 @@ public:
 
     // 3. smoothing over k-rings, not across creases: the directions by log-Euclidean averaging, the
     // logarithms of the two scales as numbers
-    if(o.smoothing_iterations > 0 || o.scale_smoothing_iterations > 0) {
-      // an edge is followed by the rings if it joins two ordinary vertices or is a crease edge
-      const auto usable = [&](std::size_t x, std::size_t y) {
-        if(crease_vertex[x] != crease_vertex[y]) return false;
-        if(!crease_vertex[x]) return true;
-        const std::uint32_t i = out.find(x, y);
-        return i != out.none ? crease_edge[i] != 0 : crease_edge[out.find(y, x)] != 0;
-      };
-      std::vector<Tensor> L(n), tmp(n);
-      std::vector<double> log_big(n), log_small(n);
-      internal::parallel_for(n, threads, [&](std::size_t v) {
-        Eigen::Vector2d l;
-        Eigen::Matrix<double, 3, 2> E;
-        tangent_eigen(M[v], N[v], l, E);  // both eigenvalues > 0 after `bounded`, l[0] the larger
-        log_big[v] = 0.5 * std::log(l[0]);
-        log_small[v] = 0.5 * std::log(l[1]);
-        L[v] = std::log(l[0]) * E.col(0) * E.col(0).transpose() + std::log(l[1]) * E.col(1) * E.col(1).transpose();
-      });
-      const Rings ring(s, o.smoothing_rings, threads, usable);
-      if(o.smoothing_iterations > 0) {
-        for(int it = 0; it < o.smoothing_iterations; ++it) {
-          internal::parallel_for(n, threads, [&](std::size_t v) {
-            Tensor acc = Tensor::Zero();
-            std::size_t used = 0;
-            for(std::uint32_t r = ring.start[v]; r < ring.start[v + 1]; ++r) {
-              const std::size_t w = ring.vertex[r];
-              // transport L[w] into v's tangent plane first: averaging tensors of differently oriented
-              // tangent planes in space would leak their strong part into the normal and lose anisotropy
-              const Eigen::Vector3d k = N[w].cross(N[v]);
-              const double c = N[w].dot(N[v]);
-              if(c <= -0.5) continue;  // folded neighbourhood: its tensor does not describe v
-              Tensor K;
-              K << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
-              const Tensor R = Tensor::Identity() + K + K * K / (1 + c);
-              acc += R * L[w] * R.transpose();
-              ++used;
-            }
-            const Tensor P = Tensor::Identity() - N[v] * N[v].transpose();
-            tmp[v] = P * (acc / double(used)) * P;  // v itself is always used
-          }, 512);
-          L.swap(tmp);
-        }
-      }
-      if(o.scale_smoothing_iterations > 0) {
-        std::vector<double> next_big(n), next_small(n);
-        for(int it = 0; it < o.scale_smoothing_iterations; ++it) {
-          internal::parallel_for(n, threads, [&](std::size_t v) {
-            double big = 0, small = 0;
-            for(std::uint32_t r = ring.start[v]; r < ring.start[v + 1]; ++r) {
-              big += log_big[ring.vertex[r]];
-              small += log_small[ring.vertex[r]];
-            }
-            next_big[v] = big / double(ring.start[v + 1] - ring.start[v]);
-            next_small[v] = small / double(ring.start[v + 1] - ring.start[v]);
-          });
-          log_big.swap(next_big);
-          log_small.swap(next_small);
-        }
-      }
-      internal::parallel_for(n, threads, [&](std::size_t v) {
-        // the smoothed directions: the eigenvectors of L on the tangent plane, the larger eigenvalue's
-        // taking the larger scale
-        const Eigen::Vector3d t1 = N[v].unitOrthogonal(), t2 = N[v].cross(t1);
-        Eigen::Matrix<double, 3, 2> B;
-        B.col(0) = t1;
-        B.col(1) = t2;
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(B.transpose() * (0.5 * (L[v] + L[v].transpose())) * B);
-        const Eigen::Vector3d d_small = B * es.eigenvectors().col(0), d_big = B * es.eigenvectors().col(1);
-        const double big = std::exp(log_big[v]), small = std::exp(log_small[v]);
-        M[v] = bounded(big * big * d_big * d_big.transpose() + small * small * d_small * d_small.transpose(), N[v],
-                       floor_value, o.stretch_max);
-      });
-    }
+    if(o.smoothing_iterations > 0 || o.scale_smoothing_iterations > 0)
+      smooth(s, out, crease_edge, crease_vertex, o, floor_value, M);
 
     // scale: median s_big = 1
     std::vector<double> big(n);
@@ -373,6 +275,132 @@ private:
   };
 
   // eigen-decomposition of M restricted to the tangent plane of n: lambda[0] has the largest |value|
+  // the normal-cycle curvature tensor of every vertex (Cohen-Steiner and Morvan 2003: sum over the edges
+  // around it of beta |e| / 2 e e^T, beta the signed dihedral angle), not yet divided by `area` (a third of
+  // the area of its triangles); the crease edges (both halves) and vertices: |beta| above `feature_angle`
+  // degrees (none at 180)
+  static void normal_cycle_tensors(const Input_surface& s, const Directed_edges& out, double feature_angle, std::vector<Tensor>& T,
+                                   std::vector<double>& area, std::vector<char>& crease_edge, std::vector<char>& crease_vertex)
+  {
+    const std::size_t n = s.number_of_vertices();
+    const auto& P = s.points();
+    T.assign(n, Tensor::Zero());
+    area.assign(n, 0.0);
+    std::vector<Eigen::Vector3d> fn(s.number_of_faces());
+    for(std::size_t f = 0; f < s.number_of_faces(); ++f) {
+      const auto& t = s.faces()[f];
+      const Eigen::Vector3d c = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]);
+      fn[f] = c.normalized();
+      for(int k = 0; k < 3; ++k) area[t[k]] += c.norm() / 6;
+    }
+    // each interior edge once, in the order of its (smaller, larger) end, with the faces on its two sides
+    const double crease_angle = feature_angle * 3.14159265358979323846 / 180;
+    crease_edge.assign(out.head.size(), 0);
+    crease_vertex.assign(n, 0);
+    for(std::size_t a = 0; a < n; ++a)
+      for(std::uint32_t i = out.start[a]; i < out.start[a + 1]; ++i) {
+        const std::size_t b = out.head[i];
+        if(a > b) continue;
+        const std::uint32_t twin = out.find(b, a);
+        if(twin == out.none) continue;  // boundary edge: no dihedral angle
+        const Eigen::Vector3d d = P[b] - P[a];
+        const double len = d.norm();
+        const Eigen::Vector3d u = d / len, n1 = fn[out.face[i]], n2 = fn[out.face[twin]];
+        const double beta = std::atan2(n1.cross(n2).dot(u), n1.dot(n2));
+        if(std::abs(beta) > crease_angle && feature_angle < 180) {
+          crease_edge[i] = crease_edge[twin] = 1;
+          crease_vertex[a] = crease_vertex[b] = 1;
+        }
+        const Tensor contribution = beta * len / 2 * u * u.transpose();
+        T[a] += contribution;
+        T[b] += contribution;
+      }
+  }
+
+  // stage 3 of the constructor: `M` smoothed over `o.smoothing_rings`-rings that follow no edge between a
+  // crease vertex and an ordinary one (crease vertices follow crease edges only), the directions by
+  // `o.smoothing_iterations` rounds of log-Euclidean averaging (Arsigny et al. 2006) transported into each
+  // tangent plane, the logarithms of the two scales by `o.scale_smoothing_iterations` rounds of plain
+  // averaging; then bounded again
+  static void smooth(const Input_surface& s, const Directed_edges& out, const std::vector<char>& crease_edge,
+                     const std::vector<char>& crease_vertex, const Curvature_metric_options& o, double floor_value, std::vector<Tensor>& M)
+  {
+    const std::size_t n = s.number_of_vertices();
+    const auto& N = s.vertex_normals();
+    const unsigned threads = o.number_of_threads;
+    // an edge is followed by the rings if it joins two ordinary vertices or is a crease edge
+    const auto usable = [&](std::size_t x, std::size_t y) {
+      if(crease_vertex[x] != crease_vertex[y]) return false;
+      if(!crease_vertex[x]) return true;
+      const std::uint32_t i = out.find(x, y);
+      return i != out.none ? crease_edge[i] != 0 : crease_edge[out.find(y, x)] != 0;
+    };
+    std::vector<Tensor> L(n), tmp(n);
+    std::vector<double> log_big(n), log_small(n);
+    internal::parallel_for(n, threads, [&](std::size_t v) {
+      Eigen::Vector2d l;
+      Eigen::Matrix<double, 3, 2> E;
+      tangent_eigen(M[v], N[v], l, E);  // both eigenvalues > 0 after `bounded`, l[0] the larger
+      log_big[v] = 0.5 * std::log(l[0]);
+      log_small[v] = 0.5 * std::log(l[1]);
+      L[v] = std::log(l[0]) * E.col(0) * E.col(0).transpose() + std::log(l[1]) * E.col(1) * E.col(1).transpose();
+    });
+    const Rings ring(s, o.smoothing_rings, threads, usable);
+    if(o.smoothing_iterations > 0) {
+      for(int it = 0; it < o.smoothing_iterations; ++it) {
+        internal::parallel_for(n, threads, [&](std::size_t v) {
+          Tensor acc = Tensor::Zero();
+          std::size_t used = 0;
+          for(std::uint32_t r = ring.start[v]; r < ring.start[v + 1]; ++r) {
+            const std::size_t w = ring.vertex[r];
+            // transport L[w] into v's tangent plane first: averaging tensors of differently oriented
+            // tangent planes in space would leak their strong part into the normal and lose anisotropy
+            const Eigen::Vector3d k = N[w].cross(N[v]);
+            const double c = N[w].dot(N[v]);
+            if(c <= -0.5) continue;  // folded neighbourhood: its tensor does not describe v
+            Tensor K;
+            K << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
+            const Tensor R = Tensor::Identity() + K + K * K / (1 + c);
+            acc += R * L[w] * R.transpose();
+            ++used;
+          }
+          const Tensor P = Tensor::Identity() - N[v] * N[v].transpose();
+          tmp[v] = P * (acc / double(used)) * P;  // v itself is always used
+        }, 512);
+        L.swap(tmp);
+      }
+    }
+    if(o.scale_smoothing_iterations > 0) {
+      std::vector<double> next_big(n), next_small(n);
+      for(int it = 0; it < o.scale_smoothing_iterations; ++it) {
+        internal::parallel_for(n, threads, [&](std::size_t v) {
+          double big = 0, small = 0;
+          for(std::uint32_t r = ring.start[v]; r < ring.start[v + 1]; ++r) {
+            big += log_big[ring.vertex[r]];
+            small += log_small[ring.vertex[r]];
+          }
+          next_big[v] = big / double(ring.start[v + 1] - ring.start[v]);
+          next_small[v] = small / double(ring.start[v + 1] - ring.start[v]);
+        });
+        log_big.swap(next_big);
+        log_small.swap(next_small);
+      }
+    }
+    internal::parallel_for(n, threads, [&](std::size_t v) {
+      // the smoothed directions: the eigenvectors of L on the tangent plane, the larger eigenvalue's
+      // taking the larger scale
+      const Eigen::Vector3d t1 = N[v].unitOrthogonal(), t2 = N[v].cross(t1);
+      Eigen::Matrix<double, 3, 2> B;
+      B.col(0) = t1;
+      B.col(1) = t2;
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(B.transpose() * (0.5 * (L[v] + L[v].transpose())) * B);
+      const Eigen::Vector3d d_small = B * es.eigenvectors().col(0), d_big = B * es.eigenvectors().col(1);
+      const double big = std::exp(log_big[v]), small = std::exp(log_small[v]);
+      M[v] = bounded(big * big * d_big * d_big.transpose() + small * small * d_small * d_small.transpose(), N[v],
+                     floor_value, o.stretch_max);
+    });
+  }
+
   static void tangent_eigen(const Tensor& M, const Eigen::Vector3d& n, Eigen::Vector2d& lambda, Eigen::Matrix<double, 3, 2>& E)
   {
     const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
