@@ -82,6 +82,7 @@ struct Surface_optimization_report {
  * \param mesh the output of stage 5 (`extract_dual_mesh()`): positions, triangles, points on the input;
  *        modified in place
  * \param max_rounds bound on the rounds (0: nothing is done)
+ * \param vis the visitor: told of each round, may cancel
  * \returns what was done, with the quality before and after
  * \throws Internal_error if `mesh` is inconsistent (a face index out of range, fewer surface points than
  *         vertices); a `mesh` whose triangles are not a 2-manifold is left unchanged (`ran` is `false`)
