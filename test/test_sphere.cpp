@@ -33,6 +33,7 @@
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include "domain_concept_checks.h"
+#include "grid_cube.h"
 #include "mesh_checks.h"
 
 #include <Eigen/Geometry>
@@ -135,41 +136,7 @@ std::vector<int> neighbours(const AC::Intrinsic_triangulation& t, int v)
   return n;
 }
 
-// The surface of the cube [-1, 1]^3, each face an n x n grid of squares cut by parallel diagonals,
-// oriented outward: every vertex off the cube's edges has a link edge cocircular with it
-AC::Input_surface make_grid_cube(int n)
-{
-  std::map<std::array<int, 3>, std::size_t> index;
-  std::vector<Eigen::Vector3d> points;
-  auto vertex = [&](std::array<int, 3> g) {
-    const auto it = index.find(g);
-    if(it != index.end()) return it->second;
-    points.push_back(Eigen::Vector3d(g[0], g[1], g[2]) * (2.0 / n) - Eigen::Vector3d::Ones());
-    return index[g] = points.size() - 1;
-  };
-  std::vector<AC::Input_surface::Face> faces;
-  for(int a = 0; a < 3; ++a)
-    for(int side : {0, n})
-      for(int i = 0; i < n; ++i)
-        for(int j = 0; j < n; ++j) {
-          auto at = [&](int di, int dj) {
-            std::array<int, 3> g;
-            g[std::size_t(a)] = side;
-            g[std::size_t((a + 1) % 3)] = i + di;
-            g[std::size_t((a + 2) % 3)] = j + dj;
-            return vertex(g);
-          };
-          const std::size_t p00 = at(0, 0), p10 = at(1, 0), p11 = at(1, 1), p01 = at(0, 1);
-          if(side == n) {  // e_(a+1) x e_(a+2) = e_a: counterclockwise in (i, j) is outward
-            faces.push_back({{p00, p10, p11}});
-            faces.push_back({{p00, p11, p01}});
-          } else {
-            faces.push_back({{p00, p11, p10}});
-            faces.push_back({{p00, p01, p11}});
-          }
-        }
-  return AC::Input_surface(points, faces);
-}
+using test::make_grid_cube;  // grid_cube.h
 
 // the smallest Delaunay margin pi - (sum of the two angles facing the edge) over the link edges of v
 double link_margin(const AC::Intrinsic_triangulation& t, int v)

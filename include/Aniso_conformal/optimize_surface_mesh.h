@@ -108,12 +108,16 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
              : 0;
     return n;
   };
-  const Quality_report before = compute_mesh_quality(mesh.points, mesh.faces, opt.metric_square_roots(), 1);
-  report.inverted_before = count_inverted();
-  report.G_min_before = before.G_min;
-  report.G_avg_before = before.G_avg;
-  report.theta_min_before = before.theta_min;
-  report.percent_below_30_before = before.percent_below_30;
+  // the quality figures and inverted triangles of `mesh` as it is, into the report's before or after fields
+  auto measure = [&](std::size_t& inverted, double& G_min, double& G_avg, double& theta_min, double& percent_below_30) {
+    const Quality_report q = compute_mesh_quality(mesh.points, mesh.faces, opt.metric_square_roots(), 1);
+    inverted = count_inverted();
+    G_min = q.G_min;
+    G_avg = q.G_avg;
+    theta_min = q.theta_min;
+    percent_below_30 = q.percent_below_30;
+  };
+  measure(report.inverted_before, report.G_min_before, report.G_avg_before, report.theta_min_before, report.percent_below_30_before);
   // the rounds asked for, and while inverted triangles are left and the rounds still change something,
   // up to three times as many more
   const std::size_t bound = 4 * max_rounds;
@@ -135,12 +139,7 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
     if(flips + moved == 0) break;
     if(round >= max_rounds) inverted = count_inverted();
   }
-  const Quality_report after = compute_mesh_quality(mesh.points, mesh.faces, opt.metric_square_roots(), 1);
-  report.inverted_after = count_inverted();
-  report.G_min_after = after.G_min;
-  report.G_avg_after = after.G_avg;
-  report.theta_min_after = after.theta_min;
-  report.percent_below_30_after = after.percent_below_30;
+  measure(report.inverted_after, report.G_min_after, report.G_avg_after, report.theta_min_after, report.percent_below_30_after);
   return report;
 }
 
