@@ -280,6 +280,84 @@ BOOST_AUTO_TEST_CASE(without_features_nothing_is_kept_or_counted)
   BOOST_TEST(AC::measure_features(make_grid_cube(4), AC::detect_features(make_grid_cube(4), 60, 30), out.points, out.faces).corners_kept == 0u);
 }
 
+namespace {
+// the edges of `s` whose two ends satisfy `on`, as (smaller, larger) pairs, sorted
+template <typename Predicate>
+std::vector<std::array<std::size_t, 2>> edges_where(const AC::Input_surface& s, Predicate on)
+{
+  std::vector<std::array<std::size_t, 2>> e;
+  for(const auto& f : s.faces())
+    for(int k = 0; k < 3; ++k) {
+      const std::size_t a = f[k], b = f[(k + 1) % 3];
+      if(a < b && on(s.points()[a]) && on(s.points()[b])) e.push_back({{a, b}});
+    }
+  std::sort(e.begin(), e.end());
+  return e;
+}
+std::size_t vertex_at(const AC::Input_surface& s, const Eigen::Vector3d& p)
+{
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v)
+    if(s.points()[v] == p) return v;
+  return s.number_of_vertices();
+}
+} // namespace
+
+BOOST_AUTO_TEST_CASE(marked_edges_and_vertices_are_features_whatever_their_angle)
+{
+  // a user's features (issue 15, item 1): with feature_angle 180 only they count; a marked vertex is a corner
+  const AC::Input_surface cube = make_grid_cube(4);
+  const auto vertical = edges_where(cube, [](const Eigen::Vector3d& p) { return p.x() == 1 && p.y() == 1; });
+  BOOST_REQUIRE(vertical.size() == 4u);  // one of the cube's edges, 4 grid edges long
+  const std::size_t centre = vertex_at(cube, Eigen::Vector3d(1, 0, 0));
+  BOOST_REQUIRE(centre < cube.number_of_vertices());
+  const AC::Feature_graph g = AC::detect_features(cube, 180, 30, vertical, {centre});
+  BOOST_TEST(g.crease_edges == vertical);
+  BOOST_REQUIRE(g.curves.size() == 1u);
+  BOOST_TEST(g.curves[0].vertices.size() == 5u);
+  BOOST_TEST(std::abs(g.curves[0].length - 2) < 1e-12);
+  BOOST_TEST(g.corners.size() == 3u);  // the curve's two ends and the marked vertex
+  BOOST_TEST(std::count(g.corners.begin(), g.corners.end(), centre) == 1);
+  // on top of the detected ones: marking a crease again changes nothing, a flat edge is added
+  const auto flat = edges_where(cube, [](const Eigen::Vector3d& p) { return p.x() == 1 && p.z() == 0; });
+  BOOST_REQUIRE(flat.size() == 4u);
+  const AC::Feature_graph all = AC::detect_features(cube, 60, 30, vertical);
+  BOOST_TEST(all.crease_edges == AC::detect_features(cube, 60, 30).crease_edges);
+  const AC::Feature_graph more = AC::detect_features(cube, 60, 30, flat);
+  BOOST_TEST(more.crease_edges.size() == 48u + 4u);
+  BOOST_TEST(more.corners.size() == 8u + 2u);  // the flat line ends on two crease midpoints, where 3 creases now meet
+
+  // marks that name no edge or no vertex of the input are bad input, named
+  auto message = [&](const std::vector<std::array<std::size_t, 2>>& e, const std::vector<std::size_t>& v) {
+    try {
+      AC::detect_features(cube, 60, 30, e, v);
+    } catch(const AC::Invalid_input& x) {
+      return std::string(x.what());
+    }
+    return std::string("(no Invalid_input)");
+  };
+  const std::size_t far = vertex_at(cube, Eigen::Vector3d(-1, -1, -1));
+  BOOST_TEST(message({{{centre, far}}}, {}).find("is not an edge of the input") != std::string::npos);
+  BOOST_TEST(message({{{centre, centre}}}, {}).find("is not an edge of the input") != std::string::npos);
+  BOOST_TEST(message({{{0, 100000}}}, {}).find("names a vertex the input does not have") != std::string::npos);
+  BOOST_TEST(message({}, {100000}).find("marked feature vertex 100000") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(a_marked_vertex_is_kept_as_an_output_vertex)
+{
+  // feature_vertices through remesh(): a fixed site mapped back exactly onto the marked vertex
+  const AC::Input_surface cube = make_grid_cube(4);
+  const std::size_t centre = vertex_at(cube, Eigen::Vector3d(1, 0, 0));
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
+    cube, AC::Uniform_metric(), r,
+    AC::parameters::number_of_vertices(std::size_t(300)).feature_angle(180.0).feature_vertices(std::vector<std::size_t>{centre}));
+  BOOST_TEST(out.points.size() == 300u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.features.corners == 1u);
+  BOOST_TEST(r.features.corners_kept == 1u);
+  BOOST_TEST(std::count(out.points.begin(), out.points.end(), Eigen::Vector3d(1, 0, 0)) == 1);
+}
+
 BOOST_AUTO_TEST_CASE(too_few_vertices_for_the_corners_or_a_bad_angle_are_refused)
 {
   AC::Remeshing_result r;

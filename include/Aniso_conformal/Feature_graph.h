@@ -73,22 +73,40 @@ struct Feature_graph {
  * 3 and more creases meet there, or when exactly 2 meet and the crease turns there by more than
  * `corner_angle` degrees (the angle between the directions of its two edges, 0 for a straight crease);
  * the creases are then chained into curves between corners, and the chains that meet no corner into
- * closed loops. `feature_angle` 180 finds nothing. Time O(V + E log E) for V vertices and E edges.
+ * closed loops. `feature_angle` 180 finds nothing.
+ *
+ * A user's own features come on top (issue 15, item 1: what a CAD model's feature lines or a user's
+ * selection mark): every edge of `marked_edges` is a crease whatever its dihedral angle, every vertex of
+ * `marked_vertices` a corner; so `feature_angle` 180 with marked edges keeps exactly those. A marked edge
+ * on the boundary is left out (the boundary is kept as it is already). Time O(V + E log E) for V
+ * vertices and E edges, plus O(m log m) for m marked edges.
  *
  * \param surface the input
  * \param feature_angle degrees in [0, 180] (default of `remesh()`: 60)
  * \param corner_angle degrees in [0, 180) (default of `remesh()`: 30, the boundary's)
+ * \param marked_edges edges to keep as creases, as pairs of input vertex indices in either order (the
+ *        named parameter `feature_edges` of `remesh()`; the tool's `--features FILE`)
+ * \param marked_vertices input vertex indices to keep as corners (`feature_vertices`)
  * \returns the crease edges, corners and curves (sorted as `Feature_graph` says)
- * \throws Invalid_input if an angle is out of its range or not finite
+ * \throws Invalid_input if an angle is out of its range or not finite, a marked vertex index is not a
+ *         vertex of `surface`, or a marked edge is not an edge of `surface` (the message names the first)
  */
-inline Feature_graph detect_features(const Input_surface& surface, double feature_angle, double corner_angle)
+inline Feature_graph detect_features(const Input_surface& surface, double feature_angle, double corner_angle,
+                                     const std::vector<std::array<std::size_t, 2>>& marked_edges = {},
+                                     const std::vector<std::size_t>& marked_vertices = {})
 {
   if(!(feature_angle >= 0 && feature_angle <= 180))
     throw Invalid_input("detect_features(): the feature angle must be in [0, 180] degrees, not " + std::to_string(feature_angle));
   if(!(corner_angle >= 0 && corner_angle < 180))
     throw Invalid_input("detect_features(): the corner angle must be in [0, 180) degrees, not " + std::to_string(corner_angle));
+  const std::size_t nv = surface.number_of_vertices();
+  for(std::size_t v : marked_vertices)
+    if(v >= nv)
+      throw Invalid_input("detect_features(): marked feature vertex " + std::to_string(v) + " is not a vertex of the input (it has " +
+                          std::to_string(nv) + ")");
   Feature_graph g;
-  if(feature_angle == 180) return g;  // CGAL's convention too: nothing is sharp at 180
+  if(feature_angle == 180 && marked_edges.empty() && marked_vertices.empty())
+    return g;  // CGAL's convention too: nothing is sharp at 180
 
   typedef CGAL::Simple_cartesian<double> K;
   typedef CGAL::Surface_mesh<K::Point_3> Mesh;
@@ -100,14 +118,27 @@ inline Feature_graph detect_features(const Input_surface& surface, double featur
     if(mesh.add_face(vd[f[0]], vd[f[1]], vd[f[2]]) == Mesh::null_face())
       throw Internal_error("detect_features(): a face of a validated surface was refused by CGAL::Surface_mesh");
   auto sharp = mesh.add_property_map<Mesh::Edge_index, bool>("e:aniso_conformal_sharp", false).first;
-  CGAL::Polygon_mesh_processing::detect_sharp_edges(mesh, feature_angle, sharp);
+  if(feature_angle < 180) CGAL::Polygon_mesh_processing::detect_sharp_edges(mesh, feature_angle, sharp);
+  for(const auto& m : marked_edges) {
+    const std::string name = "detect_features(): marked feature edge (" + std::to_string(m[0]) + ", " + std::to_string(m[1]) + ")";
+    if(m[0] >= nv || m[1] >= nv) throw Invalid_input(name + " names a vertex the input does not have (it has " + std::to_string(nv) + ")");
+    const auto h = CGAL::halfedge(vd[m[0]], vd[m[1]], mesh);
+    if(m[0] == m[1] || !h.second) throw Invalid_input(name + " is not an edge of the input's triangles");
+    put(sharp, mesh.edge(h.first), true);
+  }
   for(Mesh::Edge_index e : mesh.edges())
     if(get(sharp, e) && !mesh.is_border(e)) {  // CGAL marks the border too: the plane keeps it already
       const std::size_t a = std::size_t(mesh.vertex(e, 0)), b = std::size_t(mesh.vertex(e, 1));
       g.crease_edges.push_back({{std::min(a, b), std::max(a, b)}});
     }
   std::sort(g.crease_edges.begin(), g.crease_edges.end());
-  if(g.crease_edges.empty()) return g;
+  std::vector<char> marked_corner(P.size(), 0);
+  for(std::size_t v : marked_vertices) marked_corner[v] = 1;
+  if(g.crease_edges.empty()) {
+    for(std::size_t v = 0; v < P.size(); ++v)
+      if(marked_corner[v]) g.corners.push_back(v);
+    return g;
+  }
 
   // the crease neighbours of each vertex, sorted, and the edges already chained
   std::vector<std::vector<std::size_t>> nb(P.size());
@@ -119,8 +150,11 @@ inline Feature_graph detect_features(const Input_surface& surface, double featur
   const double turn_limit = corner_angle * 3.14159265358979323846 / 180.0;
   std::vector<char> is_corner(P.size(), 0);
   for(std::size_t v = 0; v < P.size(); ++v) {
-    if(nb[v].empty()) continue;
-    if(nb[v].size() != 2) {
+    if(marked_corner[v]) {
+      is_corner[v] = 1;
+    } else if(nb[v].empty()) {
+      continue;
+    } else if(nb[v].size() != 2) {
       is_corner[v] = 1;
     } else {
       const Eigen::Vector3d a = P[v] - P[nb[v][0]], b = P[nb[v][1]] - P[v];

@@ -62,7 +62,8 @@ struct Remeshing_result {
   /// input's vertices to the output
   double hausdorff_distance = 0;
   double hausdorff_distance_relative = 0;          ///< `hausdorff_distance` over the input's bounding-box diagonal
-  /// the input's sharp features (`detect_features()` with `feature_angle` and `corner_angle`) and how many
+  /// the input's sharp features (`detect_features()` with `feature_angle`, `corner_angle` and the user's
+  /// `feature_edges` and `feature_vertices`) and how many
   /// of them the output keeps (`measure_features()`); all zero when the input has none
   Feature_report features;
   /// what the domain measured (flat torus: the lattice; sphere: the angle distortion; hyperbolic disk:

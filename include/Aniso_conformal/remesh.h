@@ -86,6 +86,10 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *     creases (where 1 or 3 and more meet, or where one turns by more than `corner_angle`) is a fixed site
  *     of the CVT and an output vertex exactly, except a corner closer than half the output's edge length
  *     (in the metric) to another one; `Remeshing_result::features` measures what is kept;
+ *   - `feature_edges` (`std::vector<std::array<std::size_t, 2>>`, default none) and `feature_vertices`
+ *     (`std::vector<std::size_t>`, default none): the user's own creases (pairs of input vertex indices)
+ *     and corners, kept whatever their angle, on top of those `feature_angle` finds (`detect_features()`;
+ *     with `feature_angle(180)`, only these);
  *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
  *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
  *   - `surface_optimization` (default `Surface_optimization::REPAIR`): when the final optimisation on the
@@ -100,7 +104,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *         unusable (non-finite, not symmetric, not positive definite on the tangent plane),
  *         `number_of_vertices` is missing, below the minimum (3 and the number of corners; 4 on the sphere, 7 on the flat torus,
  *         the smallest triangulation of the genus above that: 10 for genus 2, 12 for genus 3; on a closed
- *         surface the number of corners of its creases), or `feature_angle` is not in [0, 180]
+ *         surface the number of corners of its creases), `feature_angle` is not in [0, 180], or a
+ *         `feature_edges` pair is not an edge of the input or a `feature_vertices` index not a vertex
  * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
  *         output would have an inverted or degenerate triangle (left after the surface optimisation) or a
  *         wrong topology (it is never returned)

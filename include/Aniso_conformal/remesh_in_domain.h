@@ -56,7 +56,8 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   result.input_faces = surface.number_of_faces();
   // the input's sharp features (issue 15): measured on the output below, their time counted as the metric's
   const auto features_start = std::chrono::steady_clock::now();
-  const Feature_graph features = detect_features(surface, options.feature_angle, options.corner_angle);
+  const Feature_graph features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges,
+                                                   options.feature_vertices);
   const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
   constexpr bool closed = Domain::kind != Parametric_domain::PLANE;  // the closed domains keep the corners
   if(closed) check_vertices_for_corners(features.corners.size(), n, options.feature_angle);

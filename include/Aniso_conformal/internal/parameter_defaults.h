@@ -8,7 +8,9 @@
 
 #include <CGAL/Named_function_parameters.h>
 
+#include <array>
 #include <cstddef>
+#include <vector>
 
 // The one place where each named parameter's default lives, and the one function that reads it: every
 // stage that takes a parameter reads it through these, so that a stage called alone and the same stage
@@ -54,6 +56,20 @@ ANISO_CONFORMAL_PARAMETER_GETTER(parametric_domain, internal_np::parametric_doma
 ANISO_CONFORMAL_PARAMETER_GETTER(planar_boundary, internal_np::planar_boundary, Planar_boundary)
 ANISO_CONFORMAL_PARAMETER_GETTER(surface_optimization, internal_np::surface_optimization, Surface_optimization)
 #undef ANISO_CONFORMAL_PARAMETER_GETTER
+
+// the user's feature edges (pairs of input vertex indices) and feature vertices: none when not given
+template <typename NamedParameters>
+std::vector<std::array<std::size_t, 2>> feature_edges(const NamedParameters& np)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, internal_np::feature_edges),
+                                            std::vector<std::array<std::size_t, 2>>());
+}
+template <typename NamedParameters>
+std::vector<std::size_t> feature_vertices(const NamedParameters& np)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, internal_np::feature_vertices),
+                                            std::vector<std::size_t>());
+}
 
 // the number of output vertices: required, 0 when not given
 template <typename NamedParameters>

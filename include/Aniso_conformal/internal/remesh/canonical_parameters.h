@@ -9,8 +9,10 @@
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/parameters.h>
 
+#include <array>
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 // The pipeline's stages are templates over the named-parameter pack, whose type differs with every
 // combination of parameters a caller passes: each combination instantiated the whole pipeline again
@@ -55,6 +57,8 @@ struct Remeshing_options {
   unsigned random_seed = defaults::random_seed;
   double corner_angle = defaults::corner_angle;
   double feature_angle = defaults::feature_angle;
+  std::vector<std::array<std::size_t, 2>> feature_edges;  // the user's creases (none by default)
+  std::vector<std::size_t> feature_vertices;              // the user's corners (none by default)
   unsigned number_of_threads = defaults::number_of_threads;
   std::size_t max_adjustment_rounds = defaults::max_adjustment_rounds;
   std::size_t max_flips_per_edge = defaults::max_flips_per_edge;
@@ -73,6 +77,8 @@ struct Remeshing_options {
     o.random_seed = internal::random_seed(np);
     o.corner_angle = internal::corner_angle(np);
     o.feature_angle = internal::feature_angle(np);
+    o.feature_edges = internal::feature_edges(np);
+    o.feature_vertices = internal::feature_vertices(np);
     o.number_of_threads = internal::number_of_threads(np);
     o.max_adjustment_rounds = internal::max_adjustment_rounds(np);
     o.max_flips_per_edge = internal::max_flips_per_edge(np);
