@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 #
 # Builds the libFuzzer targets with clang in build-fuzz/ and runs each for a bounded time (doc/fuzzing.md).
-#   fuzz/run_fuzzers.sh [seconds] [target...]    default: 60 s for each of the six targets
+#   fuzz/run_fuzzers.sh [seconds] [target...]    default: 60 s for each of the seven targets
 # One fuzzer at a time, on one core. New corpus entries go to build-fuzz/corpus/<target>/ (the committed
 # seeds in fuzz/corpus/<target>/ are only read), crashes to build-fuzz/artifacts/<target>/, logs to
 # build-fuzz/logs/<target>.log. Exit status 1 if any target found something.
@@ -13,7 +13,7 @@ seconds="${1:-60}"
 shift || true
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
-  targets=(fuzz_mesh_off fuzz_mesh_obj fuzz_mesh_ply fuzz_metric_file fuzz_image fuzz_command_line)
+  targets=(fuzz_mesh_off fuzz_mesh_obj fuzz_mesh_ply fuzz_metric_file fuzz_feature_file fuzz_image fuzz_command_line)
 fi
 if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [[ "$seconds" -eq 0 ]]; then
   echo "usage: $0 [seconds] [target...]" >&2

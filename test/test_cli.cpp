@@ -680,4 +680,27 @@ BOOST_AUTO_TEST_CASE(tool_reports_and_keeps_the_corners_of_a_cube)
   BOOST_TEST(few.status == 2);
   BOOST_TEST(few.err.find("8 corners") != std::string::npos);
   BOOST_TEST(few.err.find("--no-features") != std::string::npos);
+
+  // --features FILE: the user's crease edges and corners; with --no-features only these
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--features", "f.txt"}).features_file == "f.txt");
+  const std::string marks = out_dir + "/cli_cube_features.txt", bad = out_dir + "/cli_cube_bad_features.txt";
+  std::ofstream(marks) << "# one cube edge and the opposite corner\n0 1\n6\n";
+  const Run marked = run("--input " + in + " --vertices 300 --no-features --features " + marks + " --report " + report);
+  BOOST_TEST(marked.status == 0);
+  const nlohmann::json jm = read_json(report);
+  BOOST_TEST(jm.at("features").at("crease_edges") == 1);
+  BOOST_TEST(jm.at("features").at("curves") == 1);
+  BOOST_TEST(jm.at("features").at("corners") == 3);
+  BOOST_TEST(jm.at("features").at("corners_kept") == 3);
+  // a pair that is not an edge (a diagonal of the cube), a missing file, a mesh-less run: exit 2, named
+  std::ofstream(bad) << "0 1\n0 6\n";
+  const Run diagonal = run("--input " + in + " --vertices 300 --features " + bad);
+  BOOST_TEST(diagonal.status == 2);
+  BOOST_TEST(diagonal.err.find("(0, 6) is not an edge of the input") != std::string::npos);
+  const Run missing = run("--input " + in + " --vertices 300 --features " + out_dir + "/no_such_features.txt");
+  BOOST_TEST(missing.status == 2);
+  BOOST_TEST(missing.err.find("cannot be opened") != std::string::npos);
+  const Run square = run("--domain square --vertices 300 --features " + marks);
+  BOOST_TEST(square.status == 2);
+  BOOST_TEST(square.err.find("does not apply to --image or --domain") != std::string::npos);
 }

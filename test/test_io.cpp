@@ -9,6 +9,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/IO/read_feature_file.h>
 #include <Aniso_conformal/IO/read_image.h>
 #include <Aniso_conformal/IO/read_metric_file.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
@@ -243,6 +244,45 @@ BOOST_AUTO_TEST_CASE(metric_files_round_trip_and_errors)
                       "'one' is not a number"));
   BOOST_TEST(contains(message_of([&] { AC::IO::read_metric_file(write_file("m_head.txt", "four\n"), 1); }),
                       "the first line must be the number of vertices"));
+}
+
+BOOST_AUTO_TEST_CASE(feature_files_are_read_and_errors_name_the_line)
+{
+  // one index: a corner; two: a crease edge; '#' comments and blank lines skipped (issue 15, item 1)
+  const AC::IO::Marked_features m =
+    AC::IO::read_feature_file(write_file("f.txt", "# creases of a part\n0 1\n\n 2\t3  # an edge\n4\r\n"), 5);
+  BOOST_REQUIRE(m.edges.size() == 2u);
+  BOOST_TEST((m.edges[0] == std::array<std::size_t, 2>{{0, 1}}));
+  BOOST_TEST((m.edges[1] == std::array<std::size_t, 2>{{2, 3}}));
+  BOOST_REQUIRE(m.vertices.size() == 1u);
+  BOOST_TEST(m.vertices[0] == 4u);
+  BOOST_TEST(AC::IO::read_feature_file(write_file("f_empty.txt", "# nothing\n"), 5).edges.empty());
+
+  BOOST_TEST(contains(message_of([] { AC::IO::read_feature_file(out_dir + "/missing_features.txt", 4); }), "cannot be opened"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_three.txt", "0 1\n0 1 2\n"), 4); }),
+                      "line 2: expected one vertex index (a corner) or two"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_sign.txt", "-1 2\n"), 4); }), "line 1"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_word.txt", "1 two\n"), 4); }), "line 1"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_huge.txt", "99999999999999999999999\n"), 4); }),
+                      "line 1"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_range.txt", "\n1 4\n"), 4); }),
+                      "line 2: vertex 4 does not exist (the mesh has 4"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_loop.txt", "3 3\n"), 4); }), "to itself"));
+  // a message never quotes the file's bytes
+  const std::string binary = message_of([&] { AC::IO::read_feature_file(write_file("f_bin.txt", std::string("1 \x01\xff\0", 5)), 4); });
+  BOOST_TEST(contains(binary, "line 1"));
+  BOOST_TEST(binary.find('\xff') == std::string::npos);
+
+  // through the repairs of a mesh file: its indices map to the repaired surface, a dropped point is refused
+  const std::string square = "OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n7 7 7\n3 0 1 2\n3 0 2 3\n";
+  AC::Repair_report repairs;
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(write_file("f_square.off", square), repairs);
+  BOOST_REQUIRE(s.number_of_vertices() == 4u);
+  BOOST_TEST(AC::IO::read_feature_file(write_file("f_ok.txt", "0 2\n3\n"), repairs).edges.size() == 1u);
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_dropped.txt", "4\n"), repairs); }),
+                      "vertex 4 belongs to no face"));
+  BOOST_TEST(contains(message_of([&] { AC::IO::read_feature_file(write_file("f_norep.txt", "0\n"), AC::Repair_report()); }),
+                      "no vertex map"));
 }
 
 // ------------------------------------------------------------------------------------ images

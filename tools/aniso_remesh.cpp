@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Curvature_metric.h>
 #include <Aniso_conformal/Image_metric.h>
+#include <Aniso_conformal/IO/read_feature_file.h>
 #include <Aniso_conformal/IO/read_image.h>
 #include <Aniso_conformal/IO/read_metric_file.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
@@ -80,6 +81,12 @@ template <typename Metric>
 int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const Metric& metric, double background_seconds,
         const std::string& input_name, const AC::Repair_report* repairs = nullptr)
 {
+  // the user's features: indices of the mesh file's vertices, mapped through the repairs
+  AC::IO::Marked_features marked;
+  if(!o.features_file.empty()) {
+    if(!repairs) throw AC::Invalid_input("--features marks vertices of an --input mesh; it does not apply to --image or --domain");
+    marked = AC::IO::read_feature_file(o.features_file, *repairs);
+  }
   Progress_visitor progress;
   progress.enabled = ::isatty(2) && !o.quiet;
   AC::Remeshing_result result;
@@ -89,6 +96,8 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .cvt_method(o.cvt == "lloyd" ? AC::Cvt_method::LLOYD : AC::Cvt_method::LBFGS)
                     .corner_angle(o.corner_angle)
                     .feature_angle(o.no_features ? 180.0 : o.feature_angle)
+                    .feature_edges(marked.edges)
+                    .feature_vertices(marked.vertices)
                     .planar_boundary(o.planar_boundary == "lengths" ? AC::Planar_boundary::KEEP_LENGTHS
                                      : o.planar_boundary == "shape" ? AC::Planar_boundary::KEEP_SHAPE
                                                                      : AC::Planar_boundary::AUTOMATIC)

@@ -50,6 +50,7 @@ struct Options {
   double corner_angle = 30;
   double feature_angle = 60;  // sharp features: angle between face normals above which an edge is a crease
   bool no_features = false;   // --no-features: no crease (feature angle 180)
+  std::string features_file;  // --features FILE: the user's crease edges and corners
   std::string planar_boundary = "automatic";
   std::string surface_optimization = "repair";
   unsigned threads = 0;
@@ -268,6 +269,12 @@ inline void declare_options(CLI::App& app, Options& o)
       ->group(re);
   app.add_flag("--no-features", o.no_features, "no sharp feature: the same as --feature-angle 180")
     ->excludes(feature_angle)
+    ->group(re);
+  app.add_option("--features", o.features_file,
+                 "--input meshes: a file of features to keep whatever their angle, one per line: two vertex indices "
+                 "(counted from 0 in the mesh file) for a crease edge, one for a corner; '#' starts a comment "
+                 "(with --no-features, only these)")
+    ->type_name("FILE")
     ->group(re);
   app.add_option("--planar-boundary", o.planar_boundary,
                  "disks: what the plane's layout keeps of the boundary: lengths (its metric lengths, the paper's u = 0) | "
