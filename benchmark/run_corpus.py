@@ -10,6 +10,7 @@ totals.
 
     python3 benchmark/run_corpus.py --tool build/bin/aniso_remesh [--data DIR] [--vertices 2000]
                                     [--timeout 60] [--out benchmark/corpus.md] [--only NAME...]
+                                    [--metrics isotropic|curvature ...]
 
 --data is a folder holding CGAL's data/meshes/ files; without it the script unpacks
 /usr/share/doc/libcgal-dev/data.tar.gz (Debian package libcgal-demo: `apt-get install libcgal-demo`)
@@ -129,15 +130,17 @@ def main():
     ap.add_argument("--timeout", type=int, default=60)
     ap.add_argument("--out", default=os.path.join(HERE, "corpus.md"))
     ap.add_argument("--only", nargs="*")
+    ap.add_argument("--metrics", nargs="*", choices=list(METRICS), help="run only these metrics (default: all)")
     a = ap.parse_args()
     meshes, keep = data_dir(a.data)
     rows = read_list(a.list)
     if a.only:
         rows = [r for r in rows if r[0] in a.only or r[0].replace(".off", "") in a.only]
     work = tempfile.TemporaryDirectory()
-    lines, results = [], {m: [] for m in METRICS}
+    metrics = [m for m in METRICS if not a.metrics or m in a.metrics]
+    lines, results = [], {m: [] for m in metrics}
     for name, nv, nf, loops, genus in rows:
-        for metric in METRICS:
+        for metric in metrics:
             rc, sec, err, rep, out = run_one(a.tool, os.path.join(meshes, name), metric, a.vertices, a.seed, a.timeout,
                                              work.name)
             ok = False

@@ -225,6 +225,8 @@ int main_impl(int argc, char** argv)
     co.smoothing_iterations = o.smoothing_iterations;
     co.smoothing_rings = o.smoothing_rings;
     if(o.scale_smoothing_iterations >= 0) co.scale_smoothing_iterations = o.scale_smoothing_iterations;
+    if(o.gradation >= 0) co.gradation = o.gradation;
+    co.gradation_vertices = std::size_t(o.vertices);  // the metric lengths of the gradation: those of the output
     return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input, &repairs);
   }
   if(o.metric == "fig6" || o.metric == "fig7") {

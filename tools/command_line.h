@@ -40,6 +40,7 @@ struct Options {
   int smoothing_iterations = 10;
   int smoothing_rings = 2;
   int scale_smoothing_iterations = -1;  // -1: the library's default
+  double gradation = -1;                // -1: the library's default; 0: none
   double anisotropy = -1;   // image only; default (-1) 0.1 colour, 0.2 grey
   // remeshing
   long long vertices = -1;
@@ -223,6 +224,11 @@ inline void declare_options(CLI::App& app, Options& o)
     ->type_name("K")
     ->transform(decimal_integer())
     ->check(CLI::Range(0, 100000))
+    ->group(me);
+  add_real(app, "--gradation", o.gradation, "R",
+           "curvature metric: bound on the growth of the size per unit of metric length along the edges, a ratio > 1, "
+           "or 0 for none (default: the library's)",
+           real("0 or greater than 1", [](double x) { return x == 0 || x > 1; }))
     ->group(me);
   add_real(app, "--anisotropy", o.anisotropy, "S",
            "image metric: colour weight s of the paper's eq. 9 (default 0.1 colour, 0.2 grey)",
