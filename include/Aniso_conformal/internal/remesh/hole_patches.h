@@ -9,6 +9,8 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Surface_point.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/conformal/newton_solver.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/refine_background.h>
 
@@ -176,6 +178,50 @@ inline std::size_t refine_seams(Intrinsic_triangulation& itri, const Input_surfa
     queue.emplace(length(m, b), m, b);
   }
   if(splits > 0) compute_metric_edge_lengths(itri);
+  return splits;
+}
+
+// Makes the seam edges closer to intrinsically Delaunay, as a constrained Delaunay refinement does: the
+// rest is flipped to the intrinsic Delaunay triangulation (the lengths kept), then each seam edge whose
+// two facing angles add up to more than pi is split at its midpoint (on the input loop; the new edges'
+// lengths the medians of its two triangles), in at most `rounds` rounds and `most` splits: a seam edge
+// cannot flip, and a sliver of the input along a loop (an angle near pi facing it) can become flat in the
+// conformal map. Bounded because a small angle between two seam edges would make it refine for ever
+// (then the embedding's own checks decide). Returns the number of splits.
+inline std::size_t make_seams_delaunay(Intrinsic_triangulation& itri, const Input_surface& input, int rounds, std::size_t most)
+{
+  const double pi = 3.14159265358979323846;
+  std::size_t splits = 0;
+  for(int round = 0; round < rounds; ++round) {
+    make_intrinsic_delaunay(itri, 50, "remesh(): the Delaunay refinement of the holes' loops");
+    const std::vector<double> zero(itri.number_of_vertices(), 0.0);
+    const Euclidean_delaunay_flip_rule rule{zero, nullptr, true};
+    std::vector<std::pair<int, int>> bad;
+    for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
+      if(itri.is_edge_representative(h) && itri.twin(h) >= 0 && itri.is_seam_edge(h) &&
+         rule.opposite_angle(itri, h) + rule.opposite_angle(itri, itri.twin(h)) > pi + 1e-10)
+        bad.emplace_back(itri.tail(h), itri.head(h));
+    if(bad.empty()) return splits;
+    for(const auto& ab : bad) {
+      const int h = itri.find_halfedge(ab.first, ab.second);
+      if(h < 0 || itri.twin(h) < 0) continue;
+      if(splits >= most) return splits;
+      const int t = itri.twin(h), a = itri.tail(h), b = itri.head(h), c = itri.opposite_vertex(h), d = itri.opposite_vertex(t);
+      const double L = itri.length(h);
+      auto median = [L](double x, double y) { return 0.5 * std::sqrt(std::max(0.0, 2 * x * x + 2 * y * y - L * L)); };
+      const double mc = median(itri.length(Intrinsic_triangulation::next(h)), itri.length(Intrinsic_triangulation::prev(h)));
+      const double md = median(itri.length(Intrinsic_triangulation::next(t)), itri.length(Intrinsic_triangulation::prev(t)));
+      const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
+      Surface_point sp = input.project(mid);
+      sp.position = mid;
+      const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
+      itri.set_length(itri.find_halfedge(a, m), 0.5 * L);
+      itri.set_length(itri.find_halfedge(m, b), 0.5 * L);
+      itri.set_length(itri.find_halfedge(m, c), mc);
+      itri.set_length(itri.find_halfedge(m, d), md);
+      ++splits;
+    }
+  }
   return splits;
 }
 

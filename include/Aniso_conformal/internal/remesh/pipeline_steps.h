@@ -100,7 +100,12 @@ Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, co
   if(patches)
     refine_seams(itri, *input, 0.25 * edge_length_without_patches(itri, n), 64 * n + 4 * result.refinement.vertices_before);
   result.adjustment = adjust_edge_lengths(itri, surface, np);
-  if(patches) *edge_length = edge_length_without_patches(itri, n);
+  if(patches) {
+    std::size_t seam_vertices = 0;
+    for(int v = 0; v < int(itri.number_of_vertices()); ++v) seam_vertices += itri.seam(v) >= 0;
+    make_seams_delaunay(itri, *input, 8, seam_vertices);
+    *edge_length = edge_length_without_patches(itri, n);
+  }
   result.background_vertices = itri.number_of_vertices();
   result.background_faces = itri.number_of_faces();
   result.seconds[int(Stage::EDGE_LENGTHS)] = t2.stop(vis);
