@@ -110,7 +110,7 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
           for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
         }
         first.push_back(fixed.size());
-        for(std::size_t l = 0; l < apexes; ++l) fixed.push_back(seam_site<Domain>(emb, itri, int(patches->input_vertices + l)));
+        for(std::size_t l = 0; l < apexes; ++l) fixed.push_back(seam_site<Domain>(emb, itri, int(patches->apex[l])));
       }
       Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
       Remeshed_surface dual = cvt_and_dual(traits);

@@ -41,24 +41,37 @@
 namespace Aniso_conformal {
 namespace internal {
 
-// The input with its holes closed: `closed` has the input's vertices first (same indices), then one apex
-// per loop; the input's faces first, then the patches' faces (loop edge reversed, then the apex).
+// A vertex of a patch: the point at `t` from the loop's input vertex `at` (t = 0) to the apex (t = 1)
+struct Patch_vertex {
+  std::size_t loop = 0;
+  std::size_t at = 0;
+  double t = 1;
+};
+
+// The input with its holes closed: `closed` has the input's vertices first (same indices), then each
+// patch's vertices; the input's faces first, then the patches' faces.
 struct Hole_patches {
   Input_surface closed;
   std::size_t input_vertices = 0;
   std::size_t input_faces = 0;
   std::vector<std::vector<std::size_t>> loops;  // the input's boundary loops, in the orientation of its faces
+  std::vector<std::size_t> apex;                // per loop, its patch's apex in `closed`
+  std::vector<Patch_vertex> patch_vertices;     // the vertices of `closed` from input_vertices on
 };
 
 // Closes each boundary loop of `s` with a cone: its apex above the loop's centroid, at half the loop's
-// mean radius, on the side the patch's orientation (consistent with the surface's) points to. The cone
-// is a topological disk whatever the loop's shape; only its intrinsic lengths matter (the positions enter
-// the metric edge lengths only), and no output vertex comes from it.
+// mean radius, on the side the patch's orientation (consistent with the surface's) points to, one fan
+// of triangles from the apex (cutting it into rings of copies of the loop made a square loop's corners
+// go flat in the conformal map: test_boundaries' plate). The cone is a topological disk whatever the loop's shape;
+// only its intrinsic lengths matter (the positions enter the metric edge lengths only), and no output
+// vertex comes from it.
 inline Hole_patches close_holes(const Input_surface& s)
 {
   const std::vector<std::vector<std::size_t>>& loops = s.boundary_loops();
   std::vector<Eigen::Vector3d> points = s.points();
   std::vector<Input_surface::Face> faces(s.faces().begin(), s.faces().end());
+  std::vector<std::size_t> apexes;
+  std::vector<Patch_vertex> patch_vertices;
   for(std::size_t l = 0; l < loops.size(); ++l) {
     const std::vector<std::size_t>& loop = loops[l];
     Eigen::Vector3d c = Eigen::Vector3d::Zero(), newell = Eigen::Vector3d::Zero();
@@ -75,10 +88,12 @@ inline Hole_patches close_holes(const Input_surface& s)
                               " vertices) spans no area; this version closes each hole with a cone over its loop");
     // the patch face (b, a, apex) runs along the loop edge a -> b of the surface backwards: its normal is
     // about -newell, and the apex goes that way
-    const std::size_t apex = points.size();
-    points.push_back(c - 0.5 * radius * newell.normalized());
-    for(std::size_t i = 0; i < loop.size(); ++i)
-      faces.push_back({{loop[(i + 1) % loop.size()], loop[i], apex}});
+    const Eigen::Vector3d top = c - 0.5 * radius * newell.normalized();
+    const std::size_t m = loop.size(), apex = points.size();
+    points.push_back(top);
+    patch_vertices.push_back({l, 0, 1.0});
+    apexes.push_back(apex);
+    for(std::size_t i = 0; i < m; ++i) faces.push_back({{loop[(i + 1) % m], loop[i], apex}});
   }
   Hole_patches p{[&] {
                     try {
@@ -88,7 +103,7 @@ inline Hole_patches close_holes(const Input_surface& s)
                                               e.what() + ")");
                     }
                   }(),
-                  s.number_of_vertices(), s.number_of_faces(), loops};
+                  s.number_of_vertices(), s.number_of_faces(), loops, apexes, patch_vertices};
   if(p.closed.genus() != s.genus() || !p.closed.boundary_loops().empty())
     throw Internal_error("close_holes(): the closed surface is " + p.closed.topology_description() + ", the input " +
                          s.topology_description());
@@ -96,18 +111,24 @@ inline Hole_patches close_holes(const Input_surface& s)
 }
 
 // The metric on the closed surface: the input's on the input's faces; on a patch, the mean of its loop's
-// tensors at the apex, interpolated linearly with the loop's own (a smooth extension into the hole).
+// tensors at the apex (a patch vertex at `t` < 1 towards it: linear between that and its loop vertex's),
+// interpolated linearly over the patch's faces (a smooth extension into the hole).
 template <typename AnisotropicMetric>
 class Patched_metric {
 public:
   typedef Eigen::Matrix3d Tensor;
   Patched_metric(const AnisotropicMetric& metric, const Hole_patches& patches) : m_metric(metric), m_nv(patches.input_vertices)
   {
+    std::vector<Eigen::Matrix3d> apex;
     for(const auto& loop : patches.loops) {
       Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
       for(std::size_t v : loop) M += Eigen::Matrix3d(m_metric.tensor(Surface_point::at_vertex(v, patches.closed.points()[v])));
-      m_apex.push_back(M / double(loop.size()));
+      apex.push_back(M / double(loop.size()));
     }
+    for(const Patch_vertex& pv : patches.patch_vertices)
+      m_apex.push_back(pv.t >= 1 ? apex[pv.loop]
+                                 : Eigen::Matrix3d((1 - pv.t) * Eigen::Matrix3d(m_metric.tensor(Surface_point::at_vertex(pv.at, patches.closed.points()[pv.at]))) +
+                                                   pv.t * apex[pv.loop]));
     m_points = patches.closed.points();
   }
   Tensor tensor(const Surface_point& p) const
@@ -126,7 +147,7 @@ public:
 private:
   const AnisotropicMetric& m_metric;
   std::size_t m_nv;
-  std::vector<Eigen::Matrix3d> m_apex;
+  std::vector<Eigen::Matrix3d> m_apex;  // per patch vertex
   std::vector<Eigen::Vector3d> m_points;
 };
 
@@ -272,9 +293,17 @@ inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Ho
       const Eigen::Vector3d a = v - p, b = q - v;
       if(std::atan2(a.cross(b).norm(), a.dot(b)) > limit) is_corner[i] = 1;
     }
+    // a corner closer than half the spacing (in arc length) to the corner kept before it, or to the first
+    // one around the loop, is not kept: the turns of a jagged (scanned) loop would crowd the fixed sites
+    std::vector<double> arc(c.size() + 1, 0.0);
+    for(std::size_t i = 1; i <= c.size(); ++i) {
+      const int u = c[i - 1], v = c[i % c.size()];
+      arc[i] = arc[i - 1] + metric_segment_length(itri.position(u), itri.position(v), itri.Q(u), itri.Q(v));
+    }
     std::vector<std::size_t> starts;
     for(std::size_t i = 0; i < c.size(); ++i)
-      if(is_corner[i]) starts.push_back(i);
+      if(is_corner[i] && (starts.empty() || (arc[i] - arc[starts.back()] >= 0.5 * h && arc[c.size()] - arc[i] + arc[starts.front()] >= 0.5 * h)))
+        starts.push_back(i);
     const bool none = starts.empty();
     if(none) starts.push_back(0);
     for(std::size_t i : starts)
@@ -298,6 +327,18 @@ inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Ho
       st.count = std::size_t(std::max(0.0, m));
       if(none) st.count = std::max<std::size_t>(st.count, 3);
       stretches.push_back(std::move(st));
+    }
+  }
+  // at least 3 sites a loop: a short loop between few corners gets sites in its longest stretches
+  for(std::size_t l = 0; l < nl; ++l) {
+    std::size_t k = corners[l].size();
+    for(const auto& st : stretches)
+      if(st.loop == l) k += st.count;
+    for(; k < 3; ++k) {
+      Stretch* longest = nullptr;
+      for(auto& st : stretches)
+        if(st.loop == l && (!longest || st.s.back() / double(st.count + 1) > longest->s.back() / double(longest->count + 1))) longest = &st;
+      ++longest->count;
     }
   }
   std::size_t total = 0;
