@@ -499,25 +499,32 @@ BOOST_AUTO_TEST_CASE(garbage_files_exit_2_with_a_printable_one_line_message)
   BOOST_TEST(r.err.find("...' is not a number") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(tool_remeshes_an_annulus_with_both_loops)
+{
+  // a planar annulus (two boundary loops) goes to the sphere with its hole and outline closed by patches
+  const std::string annulus = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/annulus.off";
+  const std::string mesh = out_dir + "/cli_annulus_out.off";
+  std::remove(mesh.c_str());
+  const Run r = run("--input " + annulus + " --vertices 300 --output " + mesh + " --quiet");
+  BOOST_TEST(r.status == 0, r.err);
+  BOOST_TEST_REQUIRE(exists(mesh));
+  const Aniso_conformal::Input_surface out = Aniso_conformal::IO::read_triangle_mesh(mesh);
+  BOOST_TEST(out.number_of_vertices() == 300u);
+  BOOST_TEST(out.genus() == 0);
+  BOOST_TEST(out.boundary_loops().size() == 2u);
+}
+
 BOOST_AUTO_TEST_CASE(valid_input_this_version_cannot_remesh_exits_3)
 {
-  // a planar annulus is a valid surface, but with two boundary loops it has no domain in this version
-  const int n = 16;
-  std::ostringstream off;
-  off << "OFF\n" << 2 * n << " " << 2 * n << " 0\n";
-  for(int ring = 1; ring <= 2; ++ring)
-    for(int i = 0; i < n; ++i) off << ring * std::cos(2 * M_PI * i / n) << " " << ring * std::sin(2 * M_PI * i / n) << " 0\n";
-  for(int i = 0; i < n; ++i) {
-    const int j = (i + 1) % n;
-    off << "3 " << i << " " << n + i << " " << n + j << "\n3 " << i << " " << n + j << " " << j << "\n";
-  }
-  const std::string annulus = out_dir + "/cli_annulus.off", mesh = out_dir + "/cli_annulus_out.off";
-  write_file(annulus, off.str());
+  // the L-shaped plate under a field swirling around its re-entrant corner is valid, but with its
+  // boundary's metric lengths kept (--planar-boundary lengths) its layout crosses itself
+  const std::string cases = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/";
+  const std::string mesh = out_dir + "/cli_lshape_lengths_out.off";
   std::remove(mesh.c_str());
-  const Run r = run("--input " + annulus + " --vertices 20 --output " + mesh);
+  const Run r = run("--input " + cases + "lshape8.off --metric-file " + cases + "lshape8_swirl3.metric --planar-boundary lengths --vertices 300 --output " + mesh);
   BOOST_TEST(r.status == 3);
   BOOST_TEST(r.err.find("aniso_remesh: cannot remesh: ") == 0u);
-  BOOST_TEST(r.err.find("2 boundary loops") != std::string::npos);
+  BOOST_TEST(r.err.find("crosses itself") != std::string::npos);
   BOOST_TEST(printable_line(r.err));
   BOOST_TEST(r.out.empty());
   BOOST_TEST(!exists(mesh));

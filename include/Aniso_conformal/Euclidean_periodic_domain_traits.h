@@ -97,6 +97,7 @@ public:
         const Eigen::Vector2d st = m_inverse * corners[f][k];
         for(int d = 0; d < 2; ++d) m_reach[d] = std::max({m_reach[d], -st[d], st[d] - 1.0});
       }
+      if(itri.is_patch_face(f)) rho = {{0.0, 0.0, 0.0}};  // a hole's patch holds no site
       m_tri.push_back(internal::make_background_triangle(corners[f], rho, int(f)));
       m_total_mass += m_tri.back().area * (rho[0] + rho[1] + rho[2]) / 3.0;
     }

@@ -121,6 +121,7 @@ public:
         // in the hyperbolic plane with cells whose band of images no memory holds
         sample[k] = cf * std::pow(std::max(1e-300, 1 - emb.corner_klein[f][k].squaredNorm()), -1.5);
       }
+      if(itri.is_patch_face(f)) rho = sample = {{0.0, 0.0, 0.0}};  // a hole's patch holds no site
       m_tri.push_back(internal::make_background_triangle(emb.corner_klein[f], sample, int(f)));
       m_rho[i] = internal::make_background_triangle(emb.corner_klein[f], rho, int(f));
       const auto& X = emb.corner_hyperboloid[f];

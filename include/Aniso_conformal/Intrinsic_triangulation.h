@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -160,6 +161,49 @@ public:
   bool is_corner(int v) const { return m_corner[v] != 0; }                           ///< `true` for a boundary corner
   /// @}
 
+  /// \name Hole patches
+  /// A surface with boundary loops is remeshed in a closed domain after each hole is closed by a virtual
+  /// patch (`internal::close_holes()`): the patch's faces carry no CVT density, and the loop's edges (the
+  /// seams between the surface and a patch) are never flipped, so that every face stays on one side of a
+  /// seam. Nothing is tagged on a surface without patches.
+  /// @{
+
+  /// tags vertex `v` as on seam `loop` (0, 1, ...) at parameter `t` along it (input vertex `k` of a loop of
+  /// `size` vertices at `t = k`; a split of a seam edge at the mean of its ends' parameters)
+  void set_seam_vertex(int v, int loop, double t, std::size_t size)
+  {
+    if(m_seam.empty()) m_seam.assign(m_points.size(), -1), m_seam_t.assign(m_points.size(), 0.0);
+    if(m_seam_size.size() <= std::size_t(loop)) m_seam_size.resize(std::size_t(loop) + 1, 0);
+    m_seam[v] = loop;
+    m_seam_t[v] = t;
+    m_seam_size[std::size_t(loop)] = size;
+  }
+  /// the seam of vertex `v`, -1 if none
+  int seam(int v) const { return m_seam.empty() ? -1 : m_seam[std::size_t(v)]; }
+  /// the parameter of seam vertex `v` along its seam (in `[0, size)`)
+  double seam_parameter(int v) const { return m_seam_t[std::size_t(v)]; }
+  /// `true` if the edge of `h` is a piece of a seam (its ends consecutive on one seam): it is never flipped
+  bool is_seam_edge(int h) const
+  {
+    if(m_seam.empty()) return false;
+    const int a = tail(h), b = head(h);
+    if(m_seam[std::size_t(a)] < 0 || m_seam[std::size_t(a)] != m_seam[std::size_t(b)]) return false;
+    const double L = double(m_seam_size[std::size_t(m_seam[std::size_t(a)])]);
+    const double d = std::abs(m_seam_t[std::size_t(a)] - m_seam_t[std::size_t(b)]);
+    return std::min(d, L - d) <= 1.0 + 1e-12;
+  }
+  /// tags face `f` as a face of a hole's patch
+  void set_patch_face(int f)
+  {
+    if(m_patch.empty()) m_patch.assign(m_faces.size(), 0);
+    m_patch[std::size_t(f)] = 1;
+  }
+  /// `true` if face `f` lies in a hole's patch (no CVT density there, no output triangle)
+  bool is_patch_face(std::size_t f) const { return !m_patch.empty() && m_patch[f] != 0; }
+  /// `true` if some face is a patch's
+  bool has_patches() const { return !m_patch.empty(); }
+  /// @}
+
   /// \name Modification
   /// @{
   /*!
@@ -204,6 +248,22 @@ public:
     m_corner.push_back(0);
     m_input_angle_sum.push_back(t >= 0 ? 2 * 3.14159265358979323846 : 3.14159265358979323846);
     m_out.push_back(-1);
+    if(!m_seam.empty()) {  // a split seam edge: the new vertex is on the seam, halfway in parameter
+      const bool on_seam = is_seam_edge(h);
+      const int a = tail(h), b = head(h);
+      double ta = m_seam_t[std::size_t(a)], tb = m_seam_t[std::size_t(b)];
+      if(on_seam) {
+        const double L = double(m_seam_size[std::size_t(m_seam[std::size_t(a)])]);
+        if(std::abs(ta - tb) > 0.5 * L) (ta < tb ? ta : tb) += L;  // the piece across t = 0
+        double t = 0.5 * (ta + tb);
+        if(t >= L) t -= L;
+        m_seam.push_back(m_seam[std::size_t(a)]);
+        m_seam_t.push_back(t);
+      } else {
+        m_seam.push_back(-1);
+        m_seam_t.push_back(0.0);
+      }
+    }
     const int f0 = face(h);
     const int a = tail(h), b = head(h), c = opposite_vertex(h);
     const int Tbc = m_twin[next(h)], Tca = m_twin[prev(h)];
@@ -211,6 +271,7 @@ public:
     // f0 = (a, m, c), f2 = (m, b, c)
     m_faces[f0] = {{a, m, c}};
     const int f2 = add_face({{m, b, c}});
+    if(!m_patch.empty()) m_patch.push_back(m_patch[std::size_t(f0)]);
     link(3 * f0 + 1, 3 * f2 + 2, nan);  // m->c / c->m
     link(3 * f0 + 2, Tca, Lca);
     link(3 * f2 + 1, Tbc, Lbc);
@@ -222,6 +283,7 @@ public:
       // f1 = (b, m, d), f3 = (m, a, d)
       m_faces[f1] = {{b, m, d}};
       const int f3 = add_face({{m, a, d}});
+      if(!m_patch.empty()) m_patch.push_back(m_patch[std::size_t(f1)]);
       link(3 * f1 + 0, 3 * f2 + 0, nan);  // b->m / m->b
       link(3 * f1 + 1, 3 * f3 + 2, nan);  // m->d / d->m
       link(3 * f1 + 2, Tdb, Ldb);
@@ -292,6 +354,10 @@ private:
   std::vector<int> m_twin;
   std::vector<double> m_length;
   std::vector<int> m_out;
+  std::vector<int> m_seam;                // per vertex: its seam, -1 (empty: no seam)
+  std::vector<double> m_seam_t;           // per vertex: its parameter along its seam
+  std::vector<std::size_t> m_seam_size;   // per seam: its number of input vertices
+  std::vector<char> m_patch;              // per face: 1 in a hole's patch (empty: no patch)
 };
 
 } // namespace Aniso_conformal

@@ -124,6 +124,7 @@ public:
         p[k] = unit[std::size_t(c[k])];
         rho[k] = emb.conformal_factor[std::size_t(c[k])] * emb.conformal_factor[std::size_t(c[k])];
       }
+      if(itri.is_patch_face(f)) rho = {{0.0, 0.0, 0.0}};  // a hole's patch holds no site
       internal::Spherical_background_triangle T;
       if(!internal::make_spherical_background_triangle(p, rho, int(f), T)) {
         ++m_degenerate;

@@ -31,13 +31,11 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
 {
   if(requested != Parametric_domain::AUTOMATIC) return requested;
   if(surface.is_disk()) return Parametric_domain::PLANE;
-  if(surface.boundary_loops().empty())
-    return surface.genus() == 0 ? Parametric_domain::SPHERE
-           : surface.genus() == 1 ? Parametric_domain::FLAT_TORUS
-                                  : Parametric_domain::HYPERBOLIC;
-  throw Remeshing_failure("remesh(): the input is " + surface.topology_description() +
-                          "; this version remeshes topological disks (the plane) and closed surfaces of genus 0 (the sphere), "
-                          "1 (the flat torus) and 2 or more (the hyperbolic disk)");
+  // a closed surface, or one with several boundary loops or a boundary and a genus: the closed domain of
+  // its genus (its holes closed by patches there, remesh_in_domain())
+  return surface.genus() == 0 ? Parametric_domain::SPHERE
+         : surface.genus() == 1 ? Parametric_domain::FLAT_TORUS
+                                : Parametric_domain::HYPERBOLIC;
 }
 
 } // namespace internal

@@ -16,6 +16,7 @@
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
+#include <Aniso_conformal/internal/remesh/hole_patches.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/measure_features.h>
@@ -23,7 +24,9 @@
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,11 +48,17 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   const std::size_t n = options.number_of_vertices;
   if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
   if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
-  if(!Domain::fits(surface))
+  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;  // the closed domains keep the corners
+  // a surface with boundary loops in a closed domain: its holes closed by patches (issue 15, item 3)
+  std::unique_ptr<const Hole_patches> patches;
+  if(closed && !surface.boundary_loops().empty() && !(Domain::kind == Parametric_domain::SPHERE && surface.is_disk()))
+    patches.reset(new Hole_patches(close_holes(surface)));
+  const Input_surface& background = patches ? patches->closed : surface;
+  if(!Domain::fits(background))
     throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
                         surface.topology_description() + " (the " + domain_name(Domain::kind) + " domain takes " +
                         Domain::topology() + ")");
-  Domain::check_number_of_vertices(surface, n);
+  Domain::check_number_of_vertices(background, n);
   result = Remeshing_result();
   result.domain = Domain::kind;
   result.input_vertices = surface.number_of_vertices();
@@ -59,11 +68,13 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   const Feature_graph features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges,
                                                    options.feature_vertices);
   const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
-  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;  // the closed domains keep the corners
   if(closed) check_vertices_for_corners(features.corners.size(), n, options.feature_angle);
 
   // 1. metric, 2. edge lengths
-  Intrinsic_triangulation itri = metric_and_edge_lengths(surface, metric, n, np, vis, result);
+  double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
+  Intrinsic_triangulation itri = patches ? metric_and_edge_lengths(background, Patched_metric<AnisotropicMetric>(metric, *patches), n, np,
+                                                                   vis, result, patches.get(), &surface, &loop_edge_length)
+                                         : metric_and_edge_lengths(surface, metric, n, np, vis, result);
   result.seconds[int(Stage::METRIC)] += features_seconds;
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
@@ -73,8 +84,11 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
   const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
   // the sites (in a closed domain the input's corners first, fixed), the CVT and the dual, with any traits
+  // with patches, one more fixed site at each patch's apex (removed from the output): no hole's patch is
+  // left without a site, which the sphere's dual needs (its sites must not all lie in one hemisphere)
+  const std::size_t apexes = patches ? patches->loops.size() : 0;
   auto cvt_and_dual = [&](auto& traits) {
-    auto sites = traits.initial_sites(n, options.random_seed);
+    auto sites = traits.initial_sites(n + apexes, options.random_seed);
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
     Remeshed_surface dual = cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
     result.seconds[int(Stage::CVT)] += setup_seconds;
@@ -83,11 +97,26 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   };
   Remeshed_surface out = [&] {
     if constexpr(Domain::kind != Parametric_domain::PLANE) {
-      Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads),
-                                                                corner_sites<Domain>(emb, itri,
-                                                                                     corners_to_fix(features, itri, result.refinement.output_edge_length)));
+      std::vector<std::size_t> corners = corners_to_fix(features, itri, result.refinement.output_edge_length);
+      if(patches)  // the loops' corners are placed with their sites
+        corners.erase(std::remove_if(corners.begin(), corners.end(), [&](std::size_t v) { return itri.seam(int(v)) >= 0; }), corners.end());
+      auto fixed = corner_sites<Domain>(emb, itri, corners);
+      Loop_sites loops;
+      std::vector<std::size_t> first;
+      if(patches) {
+        loops = place_loop_sites(itri, *patches, loop_edge_length, options.corner_angle,
+                                 n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)));
+        for(const auto& l : loops.vertices) {
+          first.push_back(fixed.size());
+          for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
+        }
+        first.push_back(fixed.size());
+        for(std::size_t l = 0; l < apexes; ++l) fixed.push_back(seam_site<Domain>(emb, itri, int(patches->apex[l])));
+      }
+      Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
       Remeshed_surface dual = cvt_and_dual(traits);
-      result.boundary_sites = traits.number_of_fixed_sites() - traits.number_of_corners();  // the corners are not boundary
+      if(patches) remove_patch_triangles(dual, loops, first, surface.number_of_vertices());
+      result.boundary_sites = loops.size();  // the crease corners are not boundary
       return dual;
     } else {
       typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);

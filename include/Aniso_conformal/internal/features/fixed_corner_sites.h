@@ -70,6 +70,20 @@ std::vector<Corner_site<typename Domain::Traits::Point>> corner_sites(const type
   return sites;
 }
 
+// A background vertex `v` on a seam (a hole's loop, hole_patches.h; an input vertex or a split of a loop
+// edge) as a fixed site of the closed domain `Domain`: read from the embedding at one of its corners
+template <typename Domain>
+Corner_site<typename Domain::Traits::Point> seam_site(const typename Domain::Embedding& emb, const Intrinsic_triangulation& itri, int v)
+{
+  const std::vector<int> out = itri.outgoing_halfedges(v);
+  if(out.empty()) throw Internal_error("fixed seam sites: background vertex " + std::to_string(v) + " has no face");
+  Corner_site<typename Domain::Traits::Point> c;
+  c.face = out.front() / 3;
+  c.corner = out.front() % 3;
+  c.site = Domain::corner_site(emb, c.face, c.corner, v);
+  return c;
+}
+
 // The corners to fix: every corner, except one closer than half the output's edge length `h` (in the
 // metric, from the mean of the two square roots, as refine_background() measures) to a corner fixed before
 // it: two fixed sites that close make a sliver or an inverted output triangle (the short crease fragments

@@ -15,6 +15,7 @@
 #include <Aniso_conformal/internal/optimize/triangle_orientation.h>
 #include <Aniso_conformal/internal/parallel_for.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
+#include <Aniso_conformal/internal/remesh/hole_patches.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/optimize_surface_mesh.h>
@@ -79,18 +80,32 @@ inline std::size_t mark_corners(const Input_surface& s, Intrinsic_triangulation&
 }
 
 // stages 1 and 2: the metric at the input vertices, the corners of the boundary, the background refined
-// for `n` output vertices, the adjusted lengths
+// for `n` output vertices, the adjusted lengths. With `patches` (`surface` is then `patches->closed`, the
+// `input` with its holes closed, and `metric` extends the input's onto the patches) the patches and seams
+// are tagged, the seams refined to a quarter of the output edge length `*edge_length` (measured without
+// the patches, returned there).
 template <typename AnisotropicMetric, typename NamedParameters, typename Visitor>
 Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, const AnisotropicMetric& metric, std::size_t n,
-                                                const NamedParameters& np, Visitor& vis, Remeshing_result& result)
+                                                const NamedParameters& np, Visitor& vis, Remeshing_result& result,
+                                                const Hole_patches* patches = nullptr, const Input_surface* input = nullptr,
+                                                double* edge_length = nullptr)
 {
   Stage_timer t1(vis, Stage::METRIC);
   Intrinsic_triangulation itri(surface, compute_metric_square_roots(surface, metric));
+  if(patches) tag_hole_patches(itri, *patches);
   result.corners = mark_corners(surface, itri, corner_angle(np));
   result.seconds[int(Stage::METRIC)] = t1.stop(vis);
   Stage_timer t2(vis, Stage::EDGE_LENGTHS);
   result.refinement = refine_background(itri, surface, metric, n);
+  if(patches)
+    refine_seams(itri, *input, 0.25 * edge_length_without_patches(itri, n), 64 * n + 4 * result.refinement.vertices_before);
   result.adjustment = adjust_edge_lengths(itri, surface, np);
+  if(patches) {
+    std::size_t seam_vertices = 0;
+    for(int v = 0; v < int(itri.number_of_vertices()); ++v) seam_vertices += itri.seam(v) >= 0;
+    make_seams_delaunay(itri, *input, 8, seam_vertices);
+    *edge_length = edge_length_without_patches(itri, n);
+  }
   result.background_vertices = itri.number_of_vertices();
   result.background_faces = itri.number_of_faces();
   result.seconds[int(Stage::EDGE_LENGTHS)] = t2.stop(vis);

@@ -1,0 +1,482 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_REMESH_HOLE_PATCHES_H
+#define ANISO_CONFORMAL_INTERNAL_REMESH_HOLE_PATCHES_H
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/Surface_point.h>
+#include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/conformal/newton_solver.h>
+#include <Aniso_conformal/internal/tensor.h>
+#include <Aniso_conformal/refine_background.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <map>
+#include <queue>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+// Surfaces with boundary loops in the closed domains (issue 15, item 3). Each hole is closed by a virtual
+// patch, a cone from a new apex vertex to the loop, so that the surface becomes closed of the same genus
+// and goes to the sphere, the flat torus or the hyperbolic disk as a closed surface does; the input is
+// never modified. In the background (Intrinsic_triangulation) the patch's faces carry no CVT density and
+// each loop is a seam whose edges are never flipped; sites are fixed along every seam at about equal
+// metric arc length (their number from the loop's metric length and the output edge length, as the
+// plane places the boundary sites of a disk), at background vertices on the seam, so that they map back
+// exactly onto the input loop. The dual triangles on the patch side of each loop's chain of sites are
+// removed, and what is left is checked: every loop's consecutive sites joined by an output edge, no site
+// inside a patch (then the genus and the number of loops are checked with the rest of the output).
+
+namespace Aniso_conformal {
+namespace internal {
+
+// A vertex of a patch: the point at `t` from the loop's input vertex `at` (t = 0) to the apex (t = 1)
+struct Patch_vertex {
+  std::size_t loop = 0;
+  std::size_t at = 0;
+  double t = 1;
+};
+
+// The input with its holes closed: `closed` has the input's vertices first (same indices), then each
+// patch's vertices; the input's faces first, then the patches' faces.
+struct Hole_patches {
+  Input_surface closed;
+  std::size_t input_vertices = 0;
+  std::size_t input_faces = 0;
+  std::vector<std::vector<std::size_t>> loops;  // the input's boundary loops, in the orientation of its faces
+  std::vector<std::size_t> apex;                // per loop, its patch's apex in `closed`
+  std::vector<Patch_vertex> patch_vertices;     // the vertices of `closed` from input_vertices on
+};
+
+// Closes each boundary loop of `s` with a cone: its apex above the loop's centroid, at half the loop's
+// mean radius, on the side the patch's orientation (consistent with the surface's) points to, one fan
+// of triangles from the apex (cutting it into rings of copies of the loop made a square loop's corners
+// go flat in the conformal map: test_boundaries' plate). The cone is a topological disk whatever the loop's shape;
+// only its intrinsic lengths matter (the positions enter the metric edge lengths only), and no output
+// vertex comes from it.
+inline Hole_patches close_holes(const Input_surface& s)
+{
+  const std::vector<std::vector<std::size_t>>& loops = s.boundary_loops();
+  std::vector<Eigen::Vector3d> points = s.points();
+  std::vector<Input_surface::Face> faces(s.faces().begin(), s.faces().end());
+  std::vector<std::size_t> apexes;
+  std::vector<Patch_vertex> patch_vertices;
+  for(std::size_t l = 0; l < loops.size(); ++l) {
+    const std::vector<std::size_t>& loop = loops[l];
+    Eigen::Vector3d c = Eigen::Vector3d::Zero(), newell = Eigen::Vector3d::Zero();
+    for(std::size_t v : loop) c += s.points()[v];
+    c /= double(loop.size());
+    double radius = 0;
+    for(std::size_t i = 0; i < loop.size(); ++i) {
+      newell += s.points()[loop[i]].cross(s.points()[loop[(i + 1) % loop.size()]]);
+      radius += (s.points()[loop[i]] - c).norm();
+    }
+    radius /= double(loop.size());
+    if(!(newell.norm() > 1e-12 * radius * radius) || !(radius > 0))
+      throw Remeshing_failure("remesh(): boundary loop " + std::to_string(l) + " (" + std::to_string(loop.size()) +
+                              " vertices) spans no area; this version closes each hole with a cone over its loop");
+    // the patch face (b, a, apex) runs along the loop edge a -> b of the surface backwards: its normal is
+    // about -newell, and the apex goes that way
+    const Eigen::Vector3d top = c - 0.5 * radius * newell.normalized();
+    const std::size_t m = loop.size(), apex = points.size();
+    points.push_back(top);
+    patch_vertices.push_back({l, 0, 1.0});
+    apexes.push_back(apex);
+    for(std::size_t i = 0; i < m; ++i) faces.push_back({{loop[(i + 1) % m], loop[i], apex}});
+  }
+  Hole_patches p{[&] {
+                    try {
+                      return Input_surface(std::move(points), std::move(faces));
+                    } catch(const Invalid_input& e) {
+                      throw Remeshing_failure(std::string("remesh(): the surface closed by a cone over each hole is not valid (") +
+                                              e.what() + ")");
+                    }
+                  }(),
+                  s.number_of_vertices(), s.number_of_faces(), loops, apexes, patch_vertices};
+  if(p.closed.genus() != s.genus() || !p.closed.boundary_loops().empty())
+    throw Internal_error("close_holes(): the closed surface is " + p.closed.topology_description() + ", the input " +
+                         s.topology_description());
+  return p;
+}
+
+// The metric on the closed surface: the input's on the input's faces; on a patch, the mean of its loop's
+// tensors at the apex (a patch vertex at `t` < 1 towards it: linear between that and its loop vertex's),
+// interpolated linearly over the patch's faces (a smooth extension into the hole).
+template <typename AnisotropicMetric>
+class Patched_metric {
+public:
+  typedef Eigen::Matrix3d Tensor;
+  Patched_metric(const AnisotropicMetric& metric, const Hole_patches& patches) : m_metric(metric), m_nv(patches.input_vertices)
+  {
+    std::vector<Eigen::Matrix3d> apex;
+    for(const auto& loop : patches.loops) {
+      Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+      for(std::size_t v : loop) M += Eigen::Matrix3d(m_metric.tensor(Surface_point::at_vertex(v, patches.closed.points()[v])));
+      apex.push_back(M / double(loop.size()));
+    }
+    for(const Patch_vertex& pv : patches.patch_vertices)
+      m_apex.push_back(pv.t >= 1 ? apex[pv.loop]
+                                 : Eigen::Matrix3d((1 - pv.t) * Eigen::Matrix3d(m_metric.tensor(Surface_point::at_vertex(pv.at, patches.closed.points()[pv.at]))) +
+                                                   pv.t * apex[pv.loop]));
+    m_points = patches.closed.points();
+  }
+  Tensor tensor(const Surface_point& p) const
+  {
+    if(p.vertices[0] < m_nv && p.vertices[1] < m_nv && p.vertices[2] < m_nv) return m_metric.tensor(p);
+    Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+    for(int k = 0; k < 3; ++k) {
+      const double w = p.barycentric[k];
+      if(w == 0) continue;
+      const std::size_t v = p.vertices[std::size_t(k)];
+      M += w * (v < m_nv ? Eigen::Matrix3d(m_metric.tensor(Surface_point::at_vertex(v, m_points[v]))) : m_apex[v - m_nv]);
+    }
+    return M;
+  }
+
+private:
+  const AnisotropicMetric& m_metric;
+  std::size_t m_nv;
+  std::vector<Eigen::Matrix3d> m_apex;  // per patch vertex
+  std::vector<Eigen::Vector3d> m_points;
+};
+
+// Tags the background built on `patches.closed`: its patch faces, and each loop as a seam
+inline void tag_hole_patches(Intrinsic_triangulation& itri, const Hole_patches& patches)
+{
+  for(std::size_t f = patches.input_faces; f < itri.number_of_faces(); ++f) itri.set_patch_face(int(f));
+  for(std::size_t l = 0; l < patches.loops.size(); ++l)
+    for(std::size_t k = 0; k < patches.loops[l].size(); ++k)
+      itri.set_seam_vertex(int(patches.loops[l][k]), int(l), double(k), patches.loops[l].size());
+}
+
+// the output edge length of `n` vertices over the surface without its patches (the faces not tagged),
+// in the metric: sqrt(2 A / (sqrt(3) n)), as refine_background() measures it over the whole background
+inline double edge_length_without_patches(const Intrinsic_triangulation& itri, std::size_t n)
+{
+  double area = 0;
+  for(std::size_t f = 0; f < itri.number_of_faces(); ++f)
+    if(!itri.is_patch_face(f)) area += heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
+  return std::sqrt(2 * area / (std::sqrt(3.0) * double(std::max<std::size_t>(n, 1))));
+}
+
+// Splits every seam edge longer than `longest` in the metric at its midpoint (on the input loop's edge:
+// the point is its own projection onto `input`), so that the sites placed along a seam sit at background
+// vertices at about the spacing asked for. The new edges' lengths are set (compute_metric_edge_lengths()).
+inline std::size_t refine_seams(Intrinsic_triangulation& itri, const Input_surface& input, double longest, std::size_t most)
+{
+  auto length = [&](int a, int b) { return metric_segment_length(itri.position(a), itri.position(b), itri.Q(a), itri.Q(b)); };
+  typedef std::tuple<double, int, int> Entry;
+  std::priority_queue<Entry> queue;
+  for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
+    if(itri.is_edge_representative(h) && itri.is_seam_edge(h)) queue.emplace(length(itri.tail(h), itri.head(h)), itri.tail(h), itri.head(h));
+  std::size_t splits = 0;
+  while(!queue.empty() && std::get<0>(queue.top()) > longest) {
+    const Entry top = queue.top();
+    queue.pop();
+    const int h = itri.find_halfedge(std::get<1>(top), std::get<2>(top));
+    if(h < 0 || !itri.is_seam_edge(h)) continue;
+    if(itri.number_of_vertices() >= most)
+      throw Remeshing_failure("remesh(): the boundary loops need more than " + std::to_string(most) +
+                              " background vertices to carry their sites");
+    const int a = itri.tail(h), b = itri.head(h);
+    const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
+    Surface_point sp = input.project(mid);
+    sp.position = mid;
+    const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
+    ++splits;
+    queue.emplace(length(a, m), a, m);
+    queue.emplace(length(m, b), m, b);
+  }
+  if(splits > 0) compute_metric_edge_lengths(itri);
+  return splits;
+}
+
+// Makes the seam edges closer to intrinsically Delaunay, as a constrained Delaunay refinement does: the
+// rest is flipped to the intrinsic Delaunay triangulation (the lengths kept), then each seam edge whose
+// two facing angles add up to more than pi is split at its midpoint (on the input loop; the new edges'
+// lengths the medians of its two triangles), in at most `rounds` rounds and `most` splits: a seam edge
+// cannot flip, and a sliver of the input along a loop (an angle near pi facing it) can become flat in the
+// conformal map. Bounded because a small angle between two seam edges would make it refine for ever
+// (then the embedding's own checks decide). Returns the number of splits.
+inline std::size_t make_seams_delaunay(Intrinsic_triangulation& itri, const Input_surface& input, int rounds, std::size_t most)
+{
+  const double pi = 3.14159265358979323846;
+  std::size_t splits = 0;
+  for(int round = 0; round < rounds; ++round) {
+    make_intrinsic_delaunay(itri, 50, "remesh(): the Delaunay refinement of the holes' loops");
+    const std::vector<double> zero(itri.number_of_vertices(), 0.0);
+    const Euclidean_delaunay_flip_rule rule{zero, nullptr, true};
+    std::vector<std::pair<int, int>> bad;
+    for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
+      if(itri.is_edge_representative(h) && itri.twin(h) >= 0 && itri.is_seam_edge(h) &&
+         rule.opposite_angle(itri, h) + rule.opposite_angle(itri, itri.twin(h)) > pi + 1e-10)
+        bad.emplace_back(itri.tail(h), itri.head(h));
+    if(bad.empty()) return splits;
+    for(const auto& ab : bad) {
+      const int h = itri.find_halfedge(ab.first, ab.second);
+      if(h < 0 || itri.twin(h) < 0) continue;
+      if(splits >= most) return splits;
+      const int t = itri.twin(h), a = itri.tail(h), b = itri.head(h), c = itri.opposite_vertex(h), d = itri.opposite_vertex(t);
+      const double L = itri.length(h);
+      auto median = [L](double x, double y) { return 0.5 * std::sqrt(std::max(0.0, 2 * x * x + 2 * y * y - L * L)); };
+      const double mc = median(itri.length(Intrinsic_triangulation::next(h)), itri.length(Intrinsic_triangulation::prev(h)));
+      const double md = median(itri.length(Intrinsic_triangulation::next(t)), itri.length(Intrinsic_triangulation::prev(t)));
+      const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
+      Surface_point sp = input.project(mid);
+      sp.position = mid;
+      const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
+      itri.set_length(itri.find_halfedge(a, m), 0.5 * L);
+      itri.set_length(itri.find_halfedge(m, b), 0.5 * L);
+      itri.set_length(itri.find_halfedge(m, c), mc);
+      itri.set_length(itri.find_halfedge(m, d), md);
+      ++splits;
+    }
+  }
+  return splits;
+}
+
+// The fixed sites along the loops: for each loop, background vertices on its seam in loop order
+struct Loop_sites {
+  std::vector<std::vector<int>> vertices;  // per loop, the background vertices of its sites, in the loop's order
+  std::size_t size() const
+  {
+    std::size_t k = 0;
+    for(const auto& l : vertices) k += l.size();
+    return k;
+  }
+};
+
+// Places the sites of every loop: its seam's background vertices in order, the loop's corners (input
+// vertices where the loop turns by more than `corner_angle_deg`) kept, and between two corners (or
+// around a loop without one) evenly spaced points at about `h` of metric arc length, each at the seam
+// vertex nearest in arc length (the seams are refined to a quarter of `h`). At least 3 sites a loop; in
+// all at most `budget` (the longest stretches lose sites first).
+inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Hole_patches& patches, double h, double corner_angle_deg,
+                                   std::size_t budget)
+{
+  const std::size_t nl = patches.loops.size();
+  std::vector<std::vector<int>> chain(nl);
+  for(int v = 0; v < int(itri.number_of_vertices()); ++v)
+    if(itri.seam(v) >= 0) chain[std::size_t(itri.seam(v))].push_back(v);
+  const double limit = corner_angle_deg * 3.14159265358979323846 / 180.0;
+  struct Stretch {
+    std::size_t loop;
+    std::vector<double> s;  // arc length at each chain vertex from the stretch's start (its last entry the end)
+    std::vector<int> v;
+    bool closed;            // a whole loop without corner
+    std::size_t count;      // sites strictly inside (closed: all of them)
+  };
+  std::vector<Stretch> stretches;
+  std::vector<std::vector<int>> corners(nl);
+  for(std::size_t l = 0; l < nl; ++l) {
+    auto& c = chain[l];
+    std::sort(c.begin(), c.end(), [&](int a, int b) { return itri.seam_parameter(a) < itri.seam_parameter(b); });
+    const auto& loop = patches.loops[l];
+    std::vector<char> is_corner(c.size(), 0);
+    for(std::size_t i = 0; i < c.size(); ++i) {
+      if(itri.input_vertex(c[i]) < 0) continue;
+      const std::size_t k = std::size_t(itri.seam_parameter(c[i]));
+      const Eigen::Vector3d& p = patches.closed.points()[loop[(k + loop.size() - 1) % loop.size()]];
+      const Eigen::Vector3d& v = patches.closed.points()[loop[k]];
+      const Eigen::Vector3d& q = patches.closed.points()[loop[(k + 1) % loop.size()]];
+      const Eigen::Vector3d a = v - p, b = q - v;
+      if(std::atan2(a.cross(b).norm(), a.dot(b)) > limit) is_corner[i] = 1;
+    }
+    // a corner closer than half the spacing (in arc length) to the corner kept before it, or to the first
+    // one around the loop, is not kept: the turns of a jagged (scanned) loop would crowd the fixed sites
+    std::vector<double> arc(c.size() + 1, 0.0);
+    for(std::size_t i = 1; i <= c.size(); ++i) {
+      const int u = c[i - 1], v = c[i % c.size()];
+      arc[i] = arc[i - 1] + metric_segment_length(itri.position(u), itri.position(v), itri.Q(u), itri.Q(v));
+    }
+    std::vector<std::size_t> starts;
+    for(std::size_t i = 0; i < c.size(); ++i)
+      if(is_corner[i] && (starts.empty() || (arc[i] - arc[starts.back()] >= 0.5 * h && arc[c.size()] - arc[i] + arc[starts.front()] >= 0.5 * h)))
+        starts.push_back(i);
+    const bool none = starts.empty();
+    if(none) starts.push_back(0);
+    for(std::size_t i : starts)
+      if(!none) corners[l].push_back(c[i]);
+    for(std::size_t j = 0; j < starts.size(); ++j) {
+      Stretch st;
+      st.loop = l;
+      st.closed = none;
+      const std::size_t i0 = starts[j], i1 = j + 1 < starts.size() ? starts[j + 1] : starts[0] + c.size();
+      double s = 0;
+      for(std::size_t i = i0; i <= i1; ++i) {
+        const int v = c[i % c.size()];
+        if(i > i0) {
+          const int u = c[(i - 1) % c.size()];
+          s += metric_segment_length(itri.position(u), itri.position(v), itri.Q(u), itri.Q(v));
+        }
+        st.s.push_back(s);
+        st.v.push_back(v);
+      }
+      const double m = std::round(s / h) - (none ? 0 : 1);
+      st.count = std::size_t(std::max(0.0, m));
+      if(none) st.count = std::max<std::size_t>(st.count, 3);
+      stretches.push_back(std::move(st));
+    }
+  }
+  // at least 3 sites a loop: a short loop between few corners gets sites in its longest stretches
+  for(std::size_t l = 0; l < nl; ++l) {
+    std::size_t k = corners[l].size();
+    for(const auto& st : stretches)
+      if(st.loop == l) k += st.count;
+    for(; k < 3; ++k) {
+      Stretch* longest = nullptr;
+      for(auto& st : stretches)
+        if(st.loop == l && (!longest || st.s.back() / double(st.count + 1) > longest->s.back() / double(longest->count + 1))) longest = &st;
+      ++longest->count;
+    }
+  }
+  std::size_t total = 0;
+  for(const auto& c : corners) total += c.size();
+  for(const auto& st : stretches) total += st.count;
+  while(total > budget) {
+    Stretch* longest = nullptr;
+    for(auto& st : stretches)
+      if(st.count > (st.closed ? 3u : 0u) && (!longest || st.count > longest->count)) longest = &st;
+    if(!longest) break;
+    --longest->count;
+    --total;
+  }
+  if(total > budget)
+    throw Invalid_input("remesh(): the input's " + std::to_string(nl) + " boundary loops need at least " + std::to_string(total) +
+                        " output vertices (3 a loop and its corners) and more inside; only " + std::to_string(budget) +
+                        " are available: ask for more vertices");
+  Loop_sites out;
+  out.vertices.resize(nl);
+  for(const auto& st : stretches) {
+    std::vector<int>& sites = out.vertices[st.loop];
+    if(!st.closed) sites.push_back(st.v.front());
+    const double len = st.s.back();
+    const std::size_t m = st.count;
+    const double step = len / double(st.closed ? m : m + 1);
+    std::size_t i = 0;
+    for(std::size_t k = 0; k < m; ++k) {
+      const double target = st.closed ? (double(k) + 0.5) * step : double(k + 1) * step;
+      while(i + 1 < st.s.size() && st.s[i + 1] <= target) ++i;
+      std::size_t best = (i + 1 < st.s.size() && st.s[i + 1] - target < target - st.s[i]) ? i + 1 : i;
+      // never the stretch's ends (corners) nor the vertex of the previous site
+      if(!st.closed && best == 0) best = 1;
+      if(!st.closed && best + 1 >= st.s.size()) best = st.s.size() - 2;
+      if(best >= st.v.size() || (!sites.empty() && sites.back() == st.v[best]))
+        throw Remeshing_failure("remesh(): boundary loop " + std::to_string(st.loop) +
+                                " has too few background vertices for its sites (its seam is not refined enough)");
+      sites.push_back(st.v[best]);
+    }
+  }
+  for(std::size_t l = 0; l < nl; ++l) {
+    std::vector<int> sorted = out.vertices[l];
+    std::sort(sorted.begin(), sorted.end());
+    if(std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+      throw Remeshing_failure("remesh(): two sites of boundary loop " + std::to_string(l) +
+                              " fall on the same background vertex (its seam is not refined enough)");
+  }
+  for(std::size_t l = 0; l < nl; ++l)
+    if(out.vertices[l].size() < 3)
+      throw Remeshing_failure("remesh(): boundary loop " + std::to_string(l) + " would keep " + std::to_string(out.vertices[l].size()) +
+                              " output vertices; at least 3 are needed");
+  return out;
+}
+
+// Removes from `out` the dual triangles on the patch side of every loop's chain of sites (`first[l]`,
+// the index of loop l's first site among the sites, its sites following in order; `first.back()` the
+// first of the patches' apex sites, one a loop, removed too), and checks what is left: consecutive sites
+// of a loop joined by an output edge, no other site inside a patch, every surface point on the input's
+// own vertices. Throws Convergence_failure otherwise.
+inline void remove_patch_triangles(Remeshed_surface& out, const Loop_sites& loops, const std::vector<std::size_t>& first,
+                                   std::size_t input_vertices)
+{
+  const std::size_t apex_first = first.back(), apex_end = apex_first + loops.vertices.size();
+  const std::size_t nf = out.faces.size();
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> face_of;  // directed edge -> face
+  for(std::size_t f = 0; f < nf; ++f)
+    for(int k = 0; k < 3; ++k) face_of[{out.faces[f][std::size_t(k)], out.faces[f][std::size_t((k + 1) % 3)]}] = f;
+  std::vector<std::size_t> loop_of(out.points.size(), std::size_t(-1));
+  std::map<std::pair<std::size_t, std::size_t>, char> seam;  // undirected site-chain edges
+  std::vector<std::size_t> seeds;
+  for(std::size_t l = 0; l < loops.vertices.size(); ++l) {
+    const std::size_t k = loops.vertices[l].size();
+    for(std::size_t j = 0; j < k; ++j) loop_of[first[l] + j] = l;
+    for(std::size_t j = 0; j < k; ++j) {
+      const std::size_t a = first[l] + j, b = first[l] + (j + 1) % k;
+      const auto inside = face_of.find({a, b}), outside = face_of.find({b, a});
+      if(inside == face_of.end() || outside == face_of.end())
+        throw Convergence_failure("remesh(): the output does not join sites " + std::to_string(j) + " and " +
+                                      std::to_string((j + 1) % k) + " of boundary loop " + std::to_string(l) +
+                                      " by an edge (a site came too close to the loop)",
+                                  0);
+      seam[{std::min(a, b), std::max(a, b)}] = 1;
+      seeds.push_back(outside->second);
+    }
+  }
+  // flood the patch side from the triangles beyond each chain edge, never across a chain edge
+  std::vector<char> removed(nf, 0);
+  std::vector<std::size_t> stack;
+  for(std::size_t f : seeds)
+    if(!removed[f]) {
+      removed[f] = 1;
+      stack.push_back(f);
+    }
+  while(!stack.empty()) {
+    const std::size_t f = stack.back();
+    stack.pop_back();
+    for(int k = 0; k < 3; ++k) {
+      const std::size_t a = out.faces[f][std::size_t(k)], b = out.faces[f][std::size_t((k + 1) % 3)];
+      if(seam.count({std::min(a, b), std::max(a, b)})) continue;
+      const auto g = face_of.find({b, a});
+      if(g != face_of.end() && !removed[g->second]) {
+        removed[g->second] = 1;
+        stack.push_back(g->second);
+      }
+    }
+  }
+  std::vector<std::array<std::size_t, 3>> kept;
+  std::vector<char> used(out.points.size(), 0);
+  for(std::size_t f = 0; f < nf; ++f) {
+    if(removed[f]) {
+      for(std::size_t v : out.faces[f])
+        if(loop_of[v] == std::size_t(-1) && (v < apex_first || v >= apex_end))
+          throw Convergence_failure("remesh(): output vertex " + std::to_string(v) + " lies inside the patch of a hole", 0);
+      continue;
+    }
+    kept.push_back(out.faces[f]);
+    for(std::size_t v : out.faces[f]) used[v] = 1;
+  }
+  for(std::size_t v = 0; v < used.size(); ++v) {
+    const bool apex = v >= apex_first && v < apex_end;
+    if(apex && used[v]) throw Convergence_failure("remesh(): the apex of a hole's patch is joined to the output outside the patch", 0);
+    if(!apex && !used[v])
+      throw Convergence_failure("remesh(): output vertex " + std::to_string(v) + " is left without a triangle by the holes' patches", 0);
+  }
+  // the apex sites out, the vertices after them renumbered
+  const std::size_t na = apex_end - apex_first;
+  for(auto& f : kept)
+    for(std::size_t& v : f)
+      if(v >= apex_end) v -= na;
+  out.points.erase(out.points.begin() + std::ptrdiff_t(apex_first), out.points.begin() + std::ptrdiff_t(apex_end));
+  out.surface_points.erase(out.surface_points.begin() + std::ptrdiff_t(apex_first), out.surface_points.begin() + std::ptrdiff_t(apex_end));
+  out.fixed_vertices -= std::min(out.fixed_vertices, na);
+  for(const Surface_point& sp : out.surface_points)
+    for(std::size_t w : sp.vertices)
+      if(w >= input_vertices) throw Internal_error("remesh(): an output vertex maps onto a hole's patch");
+  out.faces = std::move(kept);
+}
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_REMESH_HOLE_PATCHES_H

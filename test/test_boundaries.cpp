@@ -1,0 +1,174 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Surfaces with several boundary loops, or a boundary and a genus (issue 15, item 3): each hole closed by a
+// virtual patch, the surface remeshed in the closed domain of its genus (the sphere, the flat torus: the
+// two domains this module compiles), every loop a chain of fixed sites. An annulus, an open tube, a plate
+// with two square holes and a torus with a hole keep their topology, exactly N vertices, every output
+// vertex on an output boundary on the input's loops, no inverted triangle.
+
+#define BOOST_TEST_MODULE Aniso_conformal_boundaries
+#include <boost/test/unit_test.hpp>
+
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Flat_torus_domain.h>
+#include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Spherical_domain.h>
+#include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/remesh_in_domain.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace AC = Aniso_conformal;
+
+namespace {
+
+AC::Input_surface read_case(const std::string& name)
+{
+  return AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/" + name);
+}
+
+// A unit square plate of m x m quads with the quads of two rectangles of cells removed: 3 loops (the
+// outline and two holes), each with 4 corners
+AC::Input_surface make_plate_with_two_holes(int m)
+{
+  auto hole = [m](int i, int j) {
+    return (i >= m / 6 && i < m / 6 + m / 4 && j >= m / 6 && j < m / 6 + m / 4) ||
+           (i >= m / 2 + m / 12 && i < m / 2 + m / 12 + m / 4 && j >= m / 2 && j < m / 2 + m / 3);
+  };
+  std::vector<Eigen::Vector3d> points;
+  for(int j = 0; j <= m; ++j)
+    for(int i = 0; i <= m; ++i) points.push_back(Eigen::Vector3d(double(i) / m, double(j) / m, 0));
+  auto at = [m](int i, int j) { return std::size_t(j * (m + 1) + i); };
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j < m; ++j)
+    for(int i = 0; i < m; ++i) {
+      if(hole(i, j)) continue;
+      faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  // drop the vertices inside the holes (no face)
+  std::vector<long> index(points.size(), -1);
+  for(const auto& f : faces)
+    for(std::size_t v : f) index[v] = 0;
+  std::vector<Eigen::Vector3d> kept;
+  for(std::size_t v = 0; v < points.size(); ++v)
+    if(index[v] == 0) {
+      index[v] = long(kept.size());
+      kept.push_back(points[v]);
+    }
+  for(auto& f : faces)
+    for(std::size_t& v : f) v = std::size_t(index[v]);
+  return AC::Input_surface(std::move(kept), std::move(faces));
+}
+
+// distance from p to the segment ab
+double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  const Eigen::Vector3d d = b - a;
+  const double t = std::max(0.0, std::min(1.0, (p - a).dot(d) / d.squaredNorm()));
+  return (p - (a + t * d)).norm();
+}
+
+double diagonal(const AC::Input_surface& s)
+{
+  Eigen::Vector3d lo = s.points().front(), hi = lo;
+  for(const auto& p : s.points()) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
+// Remeshes `input` in `Domain` with n vertices and checks the output: n vertices, the input's genus and
+// number of loops, each output loop's vertices on one input loop (within 1e-9 of the diagonal), no
+// inverted triangle; prints the quality
+template <typename Domain>
+void check_remesh(const std::string& name, const AC::Input_surface& input, std::size_t n)
+{
+  AC::Remeshing_result result;
+  const AC::Remeshed_surface out =
+    AC::remesh_in_domain<Domain>(input, AC::Uniform_metric(), result, AC::parameters::number_of_vertices(n).random_seed(0));
+  BOOST_TEST(out.points.size() == n);
+  std::vector<AC::Input_surface::Face> faces(out.faces.begin(), out.faces.end());
+  const AC::Input_surface s(out.points, std::move(faces));
+  BOOST_TEST(s.genus() == input.genus());
+  BOOST_TEST(s.boundary_loops().size() == input.boundary_loops().size());
+  BOOST_TEST(result.inverted_triangles == 0u);
+  const double tolerance = 1e-9 * diagonal(input);
+  std::size_t on_loops = 0;
+  for(const auto& out_loop : s.boundary_loops()) {
+    // the input loop nearest to the output loop's first vertex holds all of it
+    double worst = 0;
+    std::size_t best_loop = 0;
+    double best = 1e300;
+    for(std::size_t l = 0; l < input.boundary_loops().size(); ++l) {
+      const auto& loop = input.boundary_loops()[l];
+      for(std::size_t i = 0; i < loop.size(); ++i) {
+        const double d = segment_distance(out.points[out_loop.front()], input.points()[loop[i]], input.points()[loop[(i + 1) % loop.size()]]);
+        if(d < best) best = d, best_loop = l;
+      }
+    }
+    const auto& loop = input.boundary_loops()[best_loop];
+    for(std::size_t v : out_loop) {
+      double d = 1e300;
+      for(std::size_t i = 0; i < loop.size(); ++i)
+        d = std::min(d, segment_distance(out.points[v], input.points()[loop[i]], input.points()[loop[(i + 1) % loop.size()]]));
+      worst = std::max(worst, d);
+    }
+    BOOST_TEST(worst < tolerance);
+    on_loops += out_loop.size();
+  }
+  BOOST_TEST(on_loops == result.boundary_sites);
+  std::printf("%-16s n=%zu loops=%zu genus=%d boundary vertices=%zu G_avg=%.3f theta_min=%.1f %%<30=%.1f hausdorff=%.2e\n",
+              name.c_str(), n, s.boundary_loops().size(), s.genus(), on_loops, result.quality.G_avg, result.quality.theta_min,
+              result.quality.percent_below_30, result.hausdorff_distance_relative);
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(annulus_keeps_both_loops)
+{
+  const AC::Input_surface annulus = read_case("annulus.off");
+  BOOST_TEST_REQUIRE(annulus.boundary_loops().size() == 2u);
+  check_remesh<AC::Spherical_domain>("annulus", annulus, 400);
+}
+
+BOOST_AUTO_TEST_CASE(open_tube_keeps_both_loops_at_several_sizes)
+{
+  const AC::Input_surface tube = read_case("tube_lowpoly.off");
+  BOOST_TEST_REQUIRE(tube.boundary_loops().size() == 2u);
+  for(std::size_t n : {60u, 300u}) check_remesh<AC::Spherical_domain>("tube", tube, n);
+}
+
+BOOST_AUTO_TEST_CASE(plate_with_two_holes_keeps_three_loops)
+{
+  const AC::Input_surface plate = make_plate_with_two_holes(24);
+  BOOST_TEST_REQUIRE(plate.boundary_loops().size() == 3u);
+  check_remesh<AC::Spherical_domain>("plate 2 holes", plate, 500);
+}
+
+BOOST_AUTO_TEST_CASE(torus_with_a_hole_keeps_its_genus_and_loop)
+{
+  const AC::Input_surface torus = read_case("torus_with_hole.off");
+  BOOST_TEST_REQUIRE(torus.genus() == 1);
+  BOOST_TEST_REQUIRE(torus.boundary_loops().size() == 1u);
+  check_remesh<AC::Flat_torus_domain>("torus with hole", torus, 600);
+}
+
+BOOST_AUTO_TEST_CASE(a_domain_that_does_not_fit_is_refused)
+{
+  // the annulus is of genus 0: the flat torus does not fit it, even with its holes closed
+  const AC::Input_surface annulus = read_case("annulus.off");
+  AC::Remeshing_result result;
+  BOOST_CHECK_THROW(AC::remesh_in_domain<AC::Flat_torus_domain>(annulus, AC::Uniform_metric(), result,
+                                                                AC::parameters::number_of_vertices(200)),
+                    AC::Invalid_input);
+}
