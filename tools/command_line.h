@@ -227,7 +227,7 @@ inline void declare_options(CLI::App& app, Options& o)
     ->group(me);
   add_real(app, "--gradation", o.gradation, "R",
            "curvature metric: bound on the growth of the size per unit of metric length along the edges, a ratio > 1, "
-           "or 0 for none (default: the library's)",
+           "or 0 for none (default 2.2)",
            real("0 or greater than 1", [](double x) { return x == 0 || x > 1; }))
     ->group(me);
   add_real(app, "--anisotropy", o.anisotropy, "S",
