@@ -60,7 +60,11 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  * - a closed surface of genus 1 goes to the flat torus (`flat_torus_embedding()`,
  *   `Euclidean_periodic_domain_traits`): the output is a closed genus-1 surface;
  * - a closed surface of genus `g >= 2` goes to the hyperbolic disk (`hyperbolic_embedding()`,
- *   `Hyperbolic_klein_domain_traits`): the output is a closed genus-`g` surface.
+ *   `Hyperbolic_klein_domain_traits`): the output is a closed genus-`g` surface;
+ * - a surface with several boundary loops, or a boundary and a genus, goes to the closed domain of its
+ *   genus with each hole closed by a virtual patch (no CVT density; its loop a chain of fixed sites at
+ *   about equal metric arc length, each an output vertex on the input loop; the patch's dual triangles
+ *   removed): the output has the input's genus and loops (manual, "Several boundary loops").
  *
  * The output is checked before it is returned: a consistently oriented, connected 2-manifold with the
  * input's genus and boundary count, no triangle inverted against the input's normals; every vertex lies
@@ -96,8 +100,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
  *     the quality (the output does not depend on it);
  *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).
  * \returns the output mesh as arrays
- * \throws Remeshing_failure if the topology has no domain in this version (a surface with several boundary
- *         loops, or a boundary and a genus), or more vertices are asked for than the background can carry
+ * \throws Remeshing_failure if a hole's loop spans no area (no patch closes it), or more vertices are asked
+ *         for than the background can carry
  * \throws Invalid_input if the topology does not fit `parametric_domain`, the metric is
  *         unusable (non-finite, not symmetric, not positive definite on the tangent plane),
  *         `number_of_vertices` is missing, below the minimum (3 and the number of corners; 4 on the sphere, 7 on the flat torus,
