@@ -138,14 +138,17 @@ BOOST_AUTO_TEST_CASE(annulus_keeps_both_loops)
 {
   const AC::Input_surface annulus = read_case("annulus.off");
   BOOST_TEST_REQUIRE(annulus.boundary_loops().size() == 2u);
-  check_remesh<AC::Spherical_domain>("annulus", annulus, 400);
+  // 200 and 300 failed with one flat triangle per edge of a loop, until a patch's spokes next to a split
+  // seam edge were no longer flipped into a flat triangle on the seam (Intrinsic_triangulation::
+  // flip_joins_seam_neighbours())
+  for(std::size_t n : {200u, 300u, 400u}) check_remesh<AC::Spherical_domain>("annulus", annulus, n);
 }
 
 BOOST_AUTO_TEST_CASE(open_tube_keeps_both_loops_at_several_sizes)
 {
   const AC::Input_surface tube = read_case("tube_lowpoly.off");
   BOOST_TEST_REQUIRE(tube.boundary_loops().size() == 2u);
-  for(std::size_t n : {60u, 300u}) check_remesh<AC::Spherical_domain>("tube", tube, n);
+  for(std::size_t n : {60u, 100u, 300u}) check_remesh<AC::Spherical_domain>("tube", tube, n);
 }
 
 BOOST_AUTO_TEST_CASE(plate_with_two_holes_keeps_three_loops)

@@ -183,14 +183,15 @@ public:
   /// the parameter of seam vertex `v` along its seam (in `[0, size)`)
   double seam_parameter(int v) const { return m_seam_t[std::size_t(v)]; }
   /// `true` if the edge of `h` is a piece of a seam (its ends consecutive on one seam): it is never flipped
-  bool is_seam_edge(int h) const
+  bool is_seam_edge(int h) const { return seam_neighbours(tail(h), head(h)); }
+  /// `true` if flipping the edge of `h` would join two vertices of one seam no farther apart along it
+  /// than an input loop edge: that edge would count as a seam piece, and the triangle between it and
+  /// the seam pieces it spans, all on the straight input edge, would be flat for good (a spoke of a
+  /// patch flipped next to a split seam edge did this: issue 15, item 3). Such an edge is never flipped.
+  bool flip_joins_seam_neighbours(int h) const
   {
-    if(m_seam.empty()) return false;
-    const int a = tail(h), b = head(h);
-    if(m_seam[std::size_t(a)] < 0 || m_seam[std::size_t(a)] != m_seam[std::size_t(b)]) return false;
-    const double L = double(m_seam_size[std::size_t(m_seam[std::size_t(a)])]);
-    const double d = std::abs(m_seam_t[std::size_t(a)] - m_seam_t[std::size_t(b)]);
-    return std::min(d, L - d) <= 1.0 + 1e-12;
+    if(m_seam.empty() || twin(h) < 0) return false;
+    return seam_neighbours(head(next(h)), head(next(twin(h))));
   }
   /// tags face `f` as a face of a hole's patch
   void set_patch_face(int f)
@@ -354,6 +355,16 @@ private:
   std::vector<int> m_twin;
   std::vector<double> m_length;
   std::vector<int> m_out;
+  // `true` if `a` and `b` lie on one seam no farther apart along it than an input loop edge
+  bool seam_neighbours(int a, int b) const
+  {
+    if(m_seam.empty()) return false;
+    if(m_seam[std::size_t(a)] < 0 || m_seam[std::size_t(a)] != m_seam[std::size_t(b)]) return false;
+    const double L = double(m_seam_size[std::size_t(m_seam[std::size_t(a)])]);
+    const double d = std::abs(m_seam_t[std::size_t(a)] - m_seam_t[std::size_t(b)]);
+    return std::min(d, L - d) <= 1.0 + 1e-12;
+  }
+
   std::vector<int> m_seam;                // per vertex: its seam, -1 (empty: no seam)
   std::vector<double> m_seam_t;           // per vertex: its parameter along its seam
   std::vector<std::size_t> m_seam_size;   // per seam: its number of input vertices

@@ -53,7 +53,7 @@ Flip_pass flip_to_delaunay(Intrinsic_triangulation& itri, const FlipRule& rule, 
     const int h = queue.front();
     queue.pop_front();
     queued[std::size_t(h)] = 0;
-    if(itri.twin(h) < 0 || itri.is_seam_edge(h) || !rule.wants_flip(itri, h)) continue;
+    if(itri.twin(h) < 0 || itri.is_seam_edge(h) || itri.flip_joins_seam_neighbours(h) || !rule.wants_flip(itri, h)) continue;
     const double length = rule.flipped_length(itri, h);
     const int g = itri.flip(h);
     itri.set_length(g, length);
