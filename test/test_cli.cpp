@@ -710,4 +710,23 @@ BOOST_AUTO_TEST_CASE(tool_reports_and_keeps_the_corners_of_a_cube)
   const Run square = run("--domain square --vertices 300 --features " + marks);
   BOOST_TEST(square.status == 2);
   BOOST_TEST(square.err.find("does not apply to --image or --domain") != std::string::npos);
+  // the feature file is read with the mesh, before any metric: a malformed one is named before a missing metric file
+  const std::string garbled = out_dir + "/cli_cube_garbled_features.txt";
+  std::ofstream(garbled) << "0 1\n0 x\n";
+  const Run first = run("--input " + in + " --vertices 300 --features " + garbled + " --metric-file " + out_dir + "/no_such_metric.txt");
+  BOOST_TEST(first.status == 2);
+  BOOST_TEST(first.err.find("line 2: expected one vertex index") != std::string::npos, first.err);
+  // a repaired mesh (a leading point of no face, dropped: CGAL moves the last point into its place, so file
+  // point 8 becomes vertex 0): the refused edge is named by the file's indices too
+  const std::string shifted = out_dir + "/cli_cube_shifted.off", shifted_bad = out_dir + "/cli_cube_shifted_bad_features.txt";
+  Aniso_conformal::IO::write_polygon_soup(
+    shifted,
+    std::vector<Eigen::Vector3d>{{5, 5, 5}, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+    std::vector<std::array<std::size_t, 3>>{{{1, 3, 2}}, {{1, 4, 3}}, {{5, 6, 7}}, {{5, 7, 8}}, {{1, 2, 6}}, {{1, 6, 5}}, {{2, 3, 7}},
+                                            {{2, 7, 6}}, {{3, 4, 8}}, {{3, 8, 7}}, {{4, 1, 5}}, {{4, 5, 8}}});
+  std::ofstream(shifted_bad) << "1 2\n2 8\n";  // an edge, then a diagonal: (1, -1, -1) to (-1, 1, 1)
+  const Run repaired = run("--input " + shifted + " --vertices 300 --features " + shifted_bad);
+  BOOST_TEST(repaired.status == 2);
+  BOOST_TEST(repaired.err.find("(2, 0) (vertices 2 and 8 of the input file) is not an edge of the input") != std::string::npos,
+             repaired.err);
 }

@@ -76,17 +76,12 @@ void write_atomically(const std::string& path, const std::function<void(const st
   }
 }
 
-// `repairs`: what was repaired in --input on reading (null for the square and images)
+// `repairs`: what was repaired in --input on reading (null for the square and images); `marked`: the
+// features of --features, read with the mesh (before the metric is built) and mapped through the repairs
 template <typename Metric>
 int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const Metric& metric, double background_seconds,
-        const std::string& input_name, const AC::Repair_report* repairs = nullptr)
+        const std::string& input_name, const AC::Repair_report* repairs = nullptr, const AC::IO::Marked_features& marked = {})
 {
-  // the user's features: indices of the mesh file's vertices, mapped through the repairs
-  AC::IO::Marked_features marked;
-  if(!o.features_file.empty()) {
-    if(!repairs) throw AC::Invalid_input("--features marks vertices of an --input mesh; it does not apply to --image or --domain");
-    marked = AC::IO::read_feature_file(o.features_file, *repairs);
-  }
   Progress_visitor progress;
   progress.enabled = ::isatty(2) && !o.quiet;
   AC::Remeshing_result result;
@@ -195,6 +190,8 @@ int main_impl(int argc, char** argv)
   if(o.help) { std::fputs(aniso_remesh::usage().c_str(), stdout); return 0; }
   if(o.version) { std::puts(aniso_remesh::version_line()); return 0; }
 
+  if(!o.features_file.empty() && o.input.empty())
+    throw AC::Invalid_input("--features marks vertices of an --input mesh; it does not apply to --image or --domain");
   const auto t0 = std::chrono::steady_clock::now();
   auto since = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   if(!o.image.empty()) {
@@ -216,9 +213,13 @@ int main_impl(int argc, char** argv)
   AC::Repair_report repairs;
   const AC::Input_surface surface =
     AC::IO::read_triangle_mesh(o.input, repairs, o.no_repair ? AC::Repair_options::none() : AC::Repair_options());
+  // the user's features, indices of the mesh file's vertices mapped through the repairs: read before any
+  // metric is built, so that a wrong file is reported at once
+  const AC::IO::Marked_features marked =
+    o.features_file.empty() ? AC::IO::Marked_features() : AC::IO::read_feature_file(o.features_file, repairs);
   // the metric file has a row per vertex of --input: those of the vertices kept by the repairs are used
   if(!o.metric_file.empty())
-    return run(o, surface, AC::IO::read_metric_file(o.metric_file, repairs), 0.0, o.input, &repairs);
+    return run(o, surface, AC::IO::read_metric_file(o.metric_file, repairs), 0.0, o.input, &repairs, marked);
   if(o.metric == "curvature") {
     AC::Curvature_metric_options co;
     co.stretch_max = o.stretch_max;
@@ -227,15 +228,15 @@ int main_impl(int argc, char** argv)
     if(o.scale_smoothing_iterations >= 0) co.scale_smoothing_iterations = o.scale_smoothing_iterations;
     if(o.gradation >= 0) co.gradation = o.gradation;
     co.gradation_vertices = std::size_t(o.vertices);  // the metric lengths of the gradation: those of the output
-    return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input, &repairs);
+    return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input, &repairs, marked);
   }
   if(o.metric == "fig6" || o.metric == "fig7") {
     if(!surface.is_planar())
       throw AC::Invalid_input("--metric " + o.metric + " is a planar metric; " + o.input + " is not in the plane z = 0");
-    if(o.metric == "fig6") return run(o, surface, AC::make_analytic_metric_2(AC::Fig6_metric()), 0.0, o.input, &repairs);
-    return run(o, surface, AC::make_analytic_metric_2(AC::Circular_metric()), 0.0, o.input, &repairs);
+    if(o.metric == "fig6") return run(o, surface, AC::make_analytic_metric_2(AC::Fig6_metric()), 0.0, o.input, &repairs, marked);
+    return run(o, surface, AC::make_analytic_metric_2(AC::Circular_metric()), 0.0, o.input, &repairs, marked);
   }
-  return run(o, surface, AC::Uniform_metric(), 0.0, o.input, &repairs);
+  return run(o, surface, AC::Uniform_metric(), 0.0, o.input, &repairs, marked);
 }
 
 // Every message goes through printable(): a path or a token quoted from a file may hold any byte.

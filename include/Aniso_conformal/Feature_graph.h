@@ -120,7 +120,10 @@ inline Feature_graph detect_features(const Input_surface& surface, double featur
   auto sharp = mesh.add_property_map<Mesh::Edge_index, bool>("e:aniso_conformal_sharp", false).first;
   if(feature_angle < 180) CGAL::Polygon_mesh_processing::detect_sharp_edges(mesh, feature_angle, sharp);
   for(const auto& m : marked_edges) {
-    const std::string name = "detect_features(): marked feature edge (" + std::to_string(m[0]) + ", " + std::to_string(m[1]) + ")";
+    std::string name = "detect_features(): marked feature edge (" + std::to_string(m[0]) + ", " + std::to_string(m[1]) + ")";
+    if(m[0] < nv && m[1] < nv && (surface.input_vertex_index(m[0]) != m[0] || surface.input_vertex_index(m[1]) != m[1]))
+      name += " (vertices " + std::to_string(surface.input_vertex_index(m[0])) + " and " +  // repaired: the file's indices too
+              std::to_string(surface.input_vertex_index(m[1])) + " of the input file)";
     if(m[0] >= nv || m[1] >= nv) throw Invalid_input(name + " names a vertex the input does not have (it has " + std::to_string(nv) + ")");
     const auto h = CGAL::halfedge(vd[m[0]], vd[m[1]], mesh);
     if(m[0] == m[1] || !h.second) throw Invalid_input(name + " is not an edge of the input's triangles");

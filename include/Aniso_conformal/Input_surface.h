@@ -146,6 +146,9 @@ public:
   const std::vector<std::vector<std::size_t>>& boundary_loops() const { return m_loops; }
   /// genus `(2 - chi - b) / 2`
   int genus() const { return (2 - m_euler - int(m_loops.size())) / 2; }
+  /// the index of vertex `v` in the input this surface was read and repaired from (`v` itself when it was
+  /// built without that map): for messages that name vertices as the user's file does
+  std::size_t input_vertex_index(std::size_t v) const { return v < m_input_vertex.size() ? m_input_vertex[v] : v; }
   /// `true` if the surface is a topological disk (one boundary loop, genus 0)
   bool is_disk() const { return m_loops.size() == 1 && genus() == 0; }
   /// `true` if the surface lies in the plane z = 0
