@@ -20,7 +20,7 @@ if [[ "${1:-}" == "--sanitize-subset" ]]; then
   cmake --build build-sanitize -j"$(nproc)" --target sanitizer_subset
   cd build-sanitize
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    ctest --output-on-failure -j1 -R '^(test_io|test_cli)$'
+    ctest --output-on-failure -j"$(nproc)" -R '^(test_io|test_cli)$'
   exit 0
 fi
 if [[ "${1:-}" == "--sanitize" ]]; then
@@ -39,4 +39,4 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DANISO_CONFORMAL_BUILD_TESTS=ON 
       -DANISO_CONFORMAL_BUILD_TOOLS=ON -DANISO_CONFORMAL_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build build -j"$(nproc)"
 cd build
-ctest --output-on-failure -j1
+ctest --output-on-failure -j"$(nproc)"  # the tests write distinct files: they run side by side
