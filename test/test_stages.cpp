@@ -491,6 +491,35 @@ BOOST_AUTO_TEST_CASE(refinement_carries_the_requested_size_on_the_input_faces)
   BOOST_TEST(fine.number_of_vertices() == t.number_of_vertices());
 }
 
+BOOST_AUTO_TEST_CASE(refinement_terminates_where_the_measured_length_grows_under_splitting)
+{
+  // CGAL's part.off with the tool's curvature metric (stretch 5, graded for the output size): the metric's
+  // principal directions turn along input edge 0-48, where the midpoint rule measures an edge from a new
+  // vertex to vertex 0 or 48 as long as the edge just split (at 1000 sites 0.0462 against 2 h = 0.0378).
+  // The bisection cycled, inserting vertices a third and two thirds along that edge in ever thinner
+  // triangles, until it threw at 64 n + 4 V vertices (64700 and 128700); the keys capped at 0.95 times the
+  // split edge's stop it.
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/part.off");
+  for(const std::size_t n : {std::size_t(1000), std::size_t(2000)}) {
+    AC::Curvature_metric_options o;
+    o.stretch_max = 5;
+    o.gradation_vertices = n;
+    const AC::Curvature_metric metric(s, o);
+    AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, metric));
+    AC::Refinement_report r;
+    BOOST_REQUIRE_NO_THROW(r = AC::refine_background(t, s, metric, n));
+    t.validate(true);
+    BOOST_TEST_MESSAGE("part.off for " << n << " sites: refined from " << r.vertices_before << " to " << r.vertices_after
+                                       << " vertices, " << r.capped << " capped keys, longest edge " << r.longest_edge
+                                       << " of 2 h = " << 2 * r.output_edge_length);
+    BOOST_TEST(r.vertices_after >= 2 * n);
+    BOOST_TEST(r.vertices_after < 4 * n);  // 2.5 n measured at 2000; the bound the cycle ran into is 64 n + 700
+    BOOST_TEST(r.capped > 0u);             // the fault is there: created edges measured longer than allowed
+    // the capped edges are few and left at most a little longer than 2 h, not unresolved regions
+    BOOST_TEST(r.longest_edge < 1.5 * 2 * r.output_edge_length);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(intrinsic_flips_and_splits_keep_the_mesh_valid)
 {
   const AC::Input_surface sq = grid_surface(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
