@@ -520,6 +520,72 @@ BOOST_AUTO_TEST_CASE(refinement_terminates_where_the_measured_length_grows_under
   }
 }
 
+BOOST_AUTO_TEST_CASE(encroached_boundary_edges_are_split_with_the_lengths_kept)
+{
+  // the unit square with an interior vertex 0.05 above the middle of its bottom edge: its triangle on that
+  // edge has a 168-degree angle there, which no flip removes
+  const std::vector<Eigen::Vector3d> points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
+                                               Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0.5, 0.05, 0)};
+  std::vector<AC::Input_surface::Face> faces(4);
+  faces[0] = {{0, 1, 4}};
+  faces[1] = {{1, 2, 4}};
+  faces[2] = {{2, 3, 4}};
+  faces[3] = {{3, 0, 4}};
+  const AC::Input_surface s(points, faces);
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  AC::internal::make_intrinsic_delaunay(t, 50, "test");
+  const std::size_t splits = AC::internal::split_encroached_boundary_edges(t, 50, "test");
+  t.validate(true);
+  BOOST_TEST(splits > 0u);
+  BOOST_TEST(t.number_of_vertices() == 5 + splits);
+  double boundary_length = 0;
+  for(int h = 0; h < int(t.number_of_halfedges()); ++h) {
+    // planar and flat: every length is the distance between the positions (halves and medians exact)
+    BOOST_TEST(std::abs(t.length(h) - (t.position(t.head(h)) - t.position(t.tail(h))).norm()) < 1e-12);
+    if(t.twin(h) >= 0) continue;
+    boundary_length += t.length(h);
+    if(t.is_boundary_vertex(t.opposite_vertex(h))) continue;
+    const double ab = t.length(h), bc = t.length(t.next(h)), ca = t.length(t.prev(h));
+    BOOST_TEST(ab * ab <= bc * bc + ca * ca, "boundary edge " << t.tail(h) << "-" << t.head(h) << " still encroached");
+  }
+  BOOST_TEST(std::abs(boundary_length - 4) < 1e-12);
+  for(int v = 5; v < int(t.number_of_vertices()); ++v) {
+    // a new vertex is on the bottom edge, and its barycentric coordinates give its position
+    const AC::Surface_point& p = t.point(v);
+    BOOST_TEST(t.is_boundary_vertex(v));
+    BOOST_TEST(std::abs(p.position.y()) < 1e-15);
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for(int k = 0; k < 3; ++k) x += p.barycentric[k] * s.points()[p.vertices[std::size_t(k)]];
+    BOOST_TEST((x - p.position).norm() < 1e-12);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(embedding_splits_the_boundary_edges_an_interior_vertex_encroaches_on)
+{
+  // CGAL's cylinder_locally_refined.off, isotropic, background for 2000 vertices: thin triangles along the
+  // boundary, obtuse at an interior vertex, were flattened onto the boundary by every solve (3 degenerate
+  // triangles, "the layout has 10 inverted or flat triangles"); the second attempt splits those boundary edges
+  const AC::Input_surface s =
+    AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/cylinder_locally_refined.off");
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::refine_background(t, s, AC::Uniform_metric(), 2000);
+  AC::adjust_edge_lengths(t, s);
+  const std::size_t before = t.number_of_vertices();
+  AC::Planar_embedding e;
+  BOOST_REQUIRE_NO_THROW(e = AC::conformal_embedding(t));
+  t.validate(true);
+  BOOST_TEST_MESSAGE("cylinder_locally_refined: " << e.boundary_splits << " boundary edges split, residual " << e.residual);
+  BOOST_TEST(e.boundary_splits > 0u);
+  BOOST_TEST(t.number_of_vertices() == before + e.boundary_splits);
+  BOOST_TEST(e.degenerate_triangles == 0u);
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const auto& c = t.face_vertices(f);
+    const Eigen::Vector2d a = e.uv[std::size_t(c[1])] - e.uv[std::size_t(c[0])], b = e.uv[std::size_t(c[2])] - e.uv[std::size_t(c[0])];
+    BOOST_TEST(a.x() * b.y() - a.y() * b.x() > 0);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(intrinsic_flips_and_splits_keep_the_mesh_valid)
 {
   const AC::Input_surface sq = grid_surface(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
