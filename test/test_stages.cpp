@@ -491,6 +491,101 @@ BOOST_AUTO_TEST_CASE(refinement_carries_the_requested_size_on_the_input_faces)
   BOOST_TEST(fine.number_of_vertices() == t.number_of_vertices());
 }
 
+BOOST_AUTO_TEST_CASE(refinement_terminates_where_the_measured_length_grows_under_splitting)
+{
+  // CGAL's part.off with the tool's curvature metric (stretch 5, graded for the output size): the metric's
+  // principal directions turn along input edge 0-48, where the midpoint rule measures an edge from a new
+  // vertex to vertex 0 or 48 as long as the edge just split (at 1000 sites 0.0462 against 2 h = 0.0378).
+  // The bisection cycled, inserting vertices a third and two thirds along that edge in ever thinner
+  // triangles, until it threw at 64 n + 4 V vertices (64700 and 128700); the keys capped at 0.95 times the
+  // split edge's stop it.
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/part.off");
+  for(const std::size_t n : {std::size_t(1000), std::size_t(2000)}) {
+    AC::Curvature_metric_options o;
+    o.stretch_max = 5;
+    o.gradation_vertices = n;
+    const AC::Curvature_metric metric(s, o);
+    AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, metric));
+    AC::Refinement_report r;
+    BOOST_REQUIRE_NO_THROW(r = AC::refine_background(t, s, metric, n));
+    t.validate(true);
+    BOOST_TEST_MESSAGE("part.off for " << n << " sites: refined from " << r.vertices_before << " to " << r.vertices_after
+                                       << " vertices, " << r.capped << " capped keys, longest edge " << r.longest_edge
+                                       << " of 2 h = " << 2 * r.output_edge_length);
+    BOOST_TEST(r.vertices_after >= 2 * n);
+    BOOST_TEST(r.vertices_after < 4 * n);  // 2.5 n measured at 2000; the bound the cycle ran into is 64 n + 700
+    BOOST_TEST(r.capped > 0u);             // the fault is there: created edges measured longer than allowed
+    // the capped edges are few and left at most a little longer than 2 h, not unresolved regions
+    BOOST_TEST(r.longest_edge < 1.5 * 2 * r.output_edge_length);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(encroached_boundary_edges_are_split_with_the_lengths_kept)
+{
+  // the unit square with an interior vertex 0.05 above the middle of its bottom edge: its triangle on that
+  // edge has a 168-degree angle there, which no flip removes
+  const std::vector<Eigen::Vector3d> points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
+                                               Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0.5, 0.05, 0)};
+  std::vector<AC::Input_surface::Face> faces(4);
+  faces[0] = {{0, 1, 4}};
+  faces[1] = {{1, 2, 4}};
+  faces[2] = {{2, 3, 4}};
+  faces[3] = {{3, 0, 4}};
+  const AC::Input_surface s(points, faces);
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  AC::internal::make_intrinsic_delaunay(t, 50, "test");
+  const std::size_t splits = AC::internal::split_encroached_boundary_edges(t, 50, "test");
+  t.validate(true);
+  BOOST_TEST(splits > 0u);
+  BOOST_TEST(t.number_of_vertices() == 5 + splits);
+  double boundary_length = 0;
+  for(int h = 0; h < int(t.number_of_halfedges()); ++h) {
+    // planar and flat: every length is the distance between the positions (halves and medians exact)
+    BOOST_TEST(std::abs(t.length(h) - (t.position(t.head(h)) - t.position(t.tail(h))).norm()) < 1e-12);
+    if(t.twin(h) >= 0) continue;
+    boundary_length += t.length(h);
+    if(t.is_boundary_vertex(t.opposite_vertex(h))) continue;
+    const double ab = t.length(h), bc = t.length(t.next(h)), ca = t.length(t.prev(h));
+    BOOST_TEST(ab * ab <= bc * bc + ca * ca, "boundary edge " << t.tail(h) << "-" << t.head(h) << " still encroached");
+  }
+  BOOST_TEST(std::abs(boundary_length - 4) < 1e-12);
+  for(int v = 5; v < int(t.number_of_vertices()); ++v) {
+    // a new vertex is on the bottom edge, and its barycentric coordinates give its position
+    const AC::Surface_point& p = t.point(v);
+    BOOST_TEST(t.is_boundary_vertex(v));
+    BOOST_TEST(std::abs(p.position.y()) < 1e-15);
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for(int k = 0; k < 3; ++k) x += p.barycentric[k] * s.points()[p.vertices[std::size_t(k)]];
+    BOOST_TEST((x - p.position).norm() < 1e-12);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(embedding_splits_the_boundary_edges_an_interior_vertex_encroaches_on)
+{
+  // CGAL's cylinder_locally_refined.off, isotropic, background for 2000 vertices: thin triangles along the
+  // boundary, obtuse at an interior vertex, were flattened onto the boundary by every solve (3 degenerate
+  // triangles, "the layout has 10 inverted or flat triangles"); the second attempt splits those boundary edges
+  const AC::Input_surface s =
+    AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/cylinder_locally_refined.off");
+  AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::refine_background(t, s, AC::Uniform_metric(), 2000);
+  AC::adjust_edge_lengths(t, s);
+  const std::size_t before = t.number_of_vertices();
+  AC::Planar_embedding e;
+  BOOST_REQUIRE_NO_THROW(e = AC::conformal_embedding(t));
+  t.validate(true);
+  BOOST_TEST_MESSAGE("cylinder_locally_refined: " << e.boundary_splits << " boundary edges split, residual " << e.residual);
+  BOOST_TEST(e.boundary_splits > 0u);
+  BOOST_TEST(t.number_of_vertices() == before + e.boundary_splits);
+  BOOST_TEST(e.degenerate_triangles == 0u);
+  for(std::size_t f = 0; f < t.number_of_faces(); ++f) {
+    const auto& c = t.face_vertices(f);
+    const Eigen::Vector2d a = e.uv[std::size_t(c[1])] - e.uv[std::size_t(c[0])], b = e.uv[std::size_t(c[2])] - e.uv[std::size_t(c[0])];
+    BOOST_TEST(a.x() * b.y() - a.y() * b.x() > 0);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(intrinsic_flips_and_splits_keep_the_mesh_valid)
 {
   const AC::Input_surface sq = grid_surface(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });

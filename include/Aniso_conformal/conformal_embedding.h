@@ -54,66 +54,17 @@ struct Planar_embedding {
   /// the turning angle of the layout's boundary at each boundary vertex (`pi` minus its angle sum in
   /// the layout; 0 elsewhere), radians: with `KEEP_SHAPE` the prescribed one, within the tolerance
   std::vector<double> boundary_turning;
+  /// boundary edges split because an interior vertex encroached on them, after a first attempt whose
+  /// layout inverted (0 normally; see `conformal_embedding()`)
+  std::size_t boundary_splits = 0;
 };
 
 
-/*!
- * \ingroup PkgAnisoConformalStages
- * computes a conformal embedding of the disk `itri` into the plane (stage 3, DESIGN.md 3): discrete
- * conformal equivalence (Springborn, Schroeder, Pinkall 2008) with per-vertex log scales `u` and scaled
- * lengths `l'_ij = exp((u_i + u_j) / 2) l_ij`, angle sum `2 pi` at interior vertices, solved by Newton's
- * method with the cotangent Laplacian as Hessian (CHOLMOD's sparse Cholesky when the build found it and the system is large, else Eigen's SimplicialLDLT) and a backtracking line
- * search; then laid out by unfolding triangles breadth-first, and the conformal factor computed per
- * vertex (paper eq.\ 6). What the boundary keeps is the named parameter `planar_boundary`:
- *
- * - `Planar_boundary::AUTOMATIC` (the default): `KEEP_LENGTHS` when its layout is embedded, else
- *   `KEEP_SHAPE` (measured on the regression set: the paper's map gives the better meshes on images and
- *   on the paper's figures, e.g. the CT slice to 1500 vertices G_avg 0.845 against 0.828 and theta_min
- *   6.9 against 0.5 degrees; the outline-keeping map is the one that exists on a swirling field at a
- *   re-entrant corner or a boundary that touches itself).
- * - `Planar_boundary::KEEP_SHAPE`: at each boundary vertex the angle sum is prescribed,
- *   `pi` minus the input's turning angle there (`pi - Intrinsic_triangulation::input_angle_sum()`: the
- *   geodesic curvature of the input's boundary, measured on the input, not in the metric), the sum made
- *   `2 pi` by Gauss-Bonnet (on a curved patch the difference, its total Gaussian curvature, is spread
- *   over the non-corner boundary vertices); `u` is free on the boundary too (fixed at one vertex for the
- *   scale, then shifted so that the layout's area is the adjusted area). This is the prescribed
- *   geodesic curvature boundary condition of Springborn, Schroeder and Pinkall (2008, section 4) with
- *   the input's own curvature, as in boundary first flattening (Sawhney and Crane 2017): the layout has
- *   the input's outline (straight runs stay straight, corners keep their angle: an L stays an L, a
- *   square becomes a rectangle) and the boundary's lengths adapt, so the conformal factor stays bounded
- *   where `u = 0` makes it explode (a strong image metric near the border). If that outline touches or
- *   crosses itself in the layout (checked exactly, with a margin of `1e-9` of the layout's diameter: a
- *   boundary that touches itself, as a ring cut open along a zero-width slit), or the solve fails, it is
- *   solved again with a convex outline (reflex turns dropped, the others scaled to `2 pi`), which is
- *   always embedded (`Planar_embedding::convex_boundary`).
- * - `Planar_boundary::KEEP_LENGTHS` (the paper's): `u = 0` on the boundary, which keeps the boundary's
- *   metric lengths and bends it as the metric demands; its layout is not guaranteed to be embedded
- *   (then a `Remeshing_failure`).
- *
- * Before every evaluation the triangulation is made intrinsically Delaunay for the scaled lengths
- * (Gillespie, Springborn and Crane 2021): interior edges are flipped, the new edge's length given by
- * Ptolemy's relation, which is invariant under the scaling. This keeps every triangle valid during the
- * solve, so metrics the paper had to tame (strong images, high stretch) embed without inverted
- * triangles. `itri` is modified by these flips (its vertices, boundary and corners are not).
- *
- * \param itri a disk-topology triangulation with valid edge lengths (after `adjust_edge_lengths()`);
- *        interior edges may be flipped
- * \param np optional named parameters: `planar_boundary` (default `Planar_boundary::AUTOMATIC`),
- *        `max_conformal_iterations` (default 100), `conformal_tolerance` (default `1e-9`, on the max
- *        angle-sum error in radians), `max_flips_per_edge` (default 50: the intrinsic Delaunay flips of
- *        one evaluation are at most that many per interior edge, plus 100), `visitor`
- *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`).
- * \returns the layout `uv` (in the units of the metric lengths: with `KEEP_SHAPE` its area is the adjusted
- *          area), `u`, the conformal factor per vertex, the solver's figures
- * \throws Invalid_input if `itri` has no boundary
- * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, if the
- *         factorisation fails, or if the layout has inverted triangles (with the residual reached)
- * \throws Remeshing_failure if the layout's boundary touches or crosses itself: with `KEEP_LENGTHS`
- *         (the message suggests `KEEP_SHAPE`), or with `KEEP_SHAPE` even once made convex (not met)
- */
-template <typename NamedParameters = parameters::Default_named_parameters>
-Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
-                                     const NamedParameters& np = parameters::default_values())
+namespace internal {
+
+// conformal_embedding() on `itri` as it is (no boundary split)
+template <typename NamedParameters>
+Planar_embedding conformal_embedding_once(Intrinsic_triangulation& itri, const NamedParameters& np)
 {
   const double pi = 3.14159265358979323846;
   const int nv = int(itri.number_of_vertices());
@@ -166,6 +117,92 @@ Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
   }
   throw Remeshing_failure("conformal embedding: the layout's boundary touches or crosses itself even with a convex outline "
                           "(rounding on a background whose boundary is nearly flat everywhere?)");
+}
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgAnisoConformalStages
+ * computes a conformal embedding of the disk `itri` into the plane (stage 3, DESIGN.md 3): discrete
+ * conformal equivalence (Springborn, Schroeder, Pinkall 2008) with per-vertex log scales `u` and scaled
+ * lengths `l'_ij = exp((u_i + u_j) / 2) l_ij`, angle sum `2 pi` at interior vertices, solved by Newton's
+ * method with the cotangent Laplacian as Hessian (CHOLMOD's sparse Cholesky when the build found it and the system is large, else Eigen's SimplicialLDLT) and a backtracking line
+ * search; then laid out by unfolding triangles breadth-first, and the conformal factor computed per
+ * vertex (paper eq.\ 6). What the boundary keeps is the named parameter `planar_boundary`:
+ *
+ * - `Planar_boundary::AUTOMATIC` (the default): `KEEP_LENGTHS` when its layout is embedded, else
+ *   `KEEP_SHAPE` (measured on the regression set: the paper's map gives the better meshes on images and
+ *   on the paper's figures, e.g. the CT slice to 1500 vertices G_avg 0.845 against 0.828 and theta_min
+ *   6.9 against 0.5 degrees; the outline-keeping map is the one that exists on a swirling field at a
+ *   re-entrant corner or a boundary that touches itself).
+ * - `Planar_boundary::KEEP_SHAPE`: at each boundary vertex the angle sum is prescribed,
+ *   `pi` minus the input's turning angle there (`pi - Intrinsic_triangulation::input_angle_sum()`: the
+ *   geodesic curvature of the input's boundary, measured on the input, not in the metric), the sum made
+ *   `2 pi` by Gauss-Bonnet (on a curved patch the difference, its total Gaussian curvature, is spread
+ *   over the non-corner boundary vertices); `u` is free on the boundary too (fixed at one vertex for the
+ *   scale, then shifted so that the layout's area is the adjusted area). This is the prescribed
+ *   geodesic curvature boundary condition of Springborn, Schroeder and Pinkall (2008, section 4) with
+ *   the input's own curvature, as in boundary first flattening (Sawhney and Crane 2017): the layout has
+ *   the input's outline (straight runs stay straight, corners keep their angle: an L stays an L, a
+ *   square becomes a rectangle) and the boundary's lengths adapt, so the conformal factor stays bounded
+ *   where `u = 0` makes it explode (a strong image metric near the border). If that outline touches or
+ *   crosses itself in the layout (checked exactly, with a margin of `1e-9` of the layout's diameter: a
+ *   boundary that touches itself, as a ring cut open along a zero-width slit), or the solve fails, it is
+ *   solved again with a convex outline (reflex turns dropped, the others scaled to `2 pi`), which is
+ *   always embedded (`Planar_embedding::convex_boundary`).
+ * - `Planar_boundary::KEEP_LENGTHS` (the paper's): `u = 0` on the boundary, which keeps the boundary's
+ *   metric lengths and bends it as the metric demands; its layout is not guaranteed to be embedded
+ *   (then a `Remeshing_failure`).
+ *
+ * Before every evaluation the triangulation is made intrinsically Delaunay for the scaled lengths
+ * (Gillespie, Springborn and Crane 2021): interior edges are flipped, the new edge's length given by
+ * Ptolemy's relation, which is invariant under the scaling. This keeps every triangle valid during the
+ * solve, so metrics the paper had to tame (strong images, high stretch) embed without inverted
+ * triangles. `itri` is modified by these flips (its vertices, boundary and corners are not).
+ *
+ * A triangle whose long edge is on the boundary cannot be flipped: where an interior vertex encroaches
+ * on a boundary edge (an obtuse angle there) the scaling can flatten the triangle onto the boundary and
+ * the layout inverts (CGAL's cylinder_locally_refined.off, isotropic, at 2000 vertices: three such
+ * triangles flat at the end of every solve). When an attempt fails so (a `Convergence_failure`), the
+ * encroached boundary edges of the triangulation as it was given are split at their midpoints until none
+ * is left (`internal::split_encroached_boundary_edges()`, Ruppert's rule for the boundary, the lengths
+ * kept: halves and medians of the flat triangles) and everything above is done again on it
+ * (`Planar_embedding::boundary_splits`); `itri` then has these new boundary vertices. An input that
+ * embeds at the first attempt is not touched.
+ *
+ * \param itri a disk-topology triangulation with valid edge lengths (after `adjust_edge_lengths()`);
+ *        interior edges may be flipped, boundary edges split
+ * \param np optional named parameters: `planar_boundary` (default `Planar_boundary::AUTOMATIC`),
+ *        `max_conformal_iterations` (default 100), `conformal_tolerance` (default `1e-9`, on the max
+ *        angle-sum error in radians), `max_flips_per_edge` (default 50: the intrinsic Delaunay flips of
+ *        one evaluation are at most that many per interior edge, plus 100), `visitor`
+ *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`).
+ * \returns the layout `uv` (in the units of the metric lengths: with `KEEP_SHAPE` its area is the adjusted
+ *          area), `u`, the conformal factor per vertex, the solver's figures
+ * \throws Invalid_input if `itri` has no boundary
+ * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, if the
+ *         factorisation fails, or if the layout has inverted triangles (with the residual reached)
+ * \throws Remeshing_failure if the layout's boundary touches or crosses itself: with `KEEP_LENGTHS`
+ *         (the message suggests `KEEP_SHAPE`), or with `KEEP_SHAPE` even once made convex (not met)
+ */
+template <typename NamedParameters = parameters::Default_named_parameters>
+Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
+                                     const NamedParameters& np = parameters::default_values())
+{
+  Intrinsic_triangulation entry = itri;  // kept for a second attempt: the first one flips `itri`
+  std::size_t splits = 0;
+  try {
+    return internal::conformal_embedding_once(itri, np);
+  } catch(const Convergence_failure&) {
+    const internal::Newton_bounds bounds = internal::Newton_bounds::from(np);
+    internal::make_intrinsic_delaunay(entry, bounds.flips_per_edge, "conformal embedding");
+    splits = internal::split_encroached_boundary_edges(entry, bounds.flips_per_edge, "conformal embedding");
+    if(splits == 0) throw;
+    itri = std::move(entry);
+  }
+  Planar_embedding emb = internal::conformal_embedding_once(itri, np);
+  emb.boundary_splits = splits;
+  return emb;
 }
 
 } // namespace Aniso_conformal

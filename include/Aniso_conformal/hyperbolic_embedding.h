@@ -145,7 +145,8 @@ inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const T
   if(!(lorentz <= layout_tol && emb.gluing_error <= 1e-6 && emb.relation_error <= layout_tol))
     throw Convergence_failure("hyperbolic embedding: the layout is inconsistent (Lorentz defect " + std::to_string(lorentz) +
                                   ", gluing error " + std::to_string(emb.gluing_error) + ", relation error " +
-                                  std::to_string(emb.relation_error) + ")",
+                                  std::to_string(emb.relation_error) + "; the fundamental domain reaches radius " +
+                                  std::to_string(emb.radius) + ", tolerances " + std::to_string(layout_tol) + " and 1e-6)",
                               std::max({lorentz, emb.gluing_error, emb.relation_error}));
 }
 
@@ -209,10 +210,14 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
   // ---- 2. cut along the edges not in the cotree and unfold the disk breadth-first on the hyperboloid
   std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
   std::vector<double> domain_area(static_cast<std::size_t>(nf));
+  std::size_t layout_degenerate = 0;  // triangles whose lengths, scaled, break the triangle inequality
+  double smallest_angle = pi;
   for(int f = 0; f < nf; ++f) {
     L[std::size_t(f)] = internal::hyperbolic_face_lengths(itri, f, emb.scale, emb.u);
     bool deg;
     const std::array<double, 3> a = internal::hyperbolic_corner_angles(L[std::size_t(f)], deg);
+    layout_degenerate += deg;
+    smallest_angle = std::min({smallest_angle, a[0], a[1], a[2]});
     domain_area[std::size_t(f)] = pi - a[0] - a[1] - a[2];
     emb.area += domain_area[std::size_t(f)];
   }
@@ -241,7 +246,14 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
 
   // ---- 3. centre the domain, 4. deck transformations and the group's relations, checked
   internal::centre_on_apex(emb.corner_hyperboloid);
-  internal::glue_fundamental_domain(itri, tc, emb);
+  try {
+    internal::glue_fundamental_domain(itri, tc, emb);
+  } catch(const Convergence_failure& e) {  // what the layout was made of, for the message
+    throw Convergence_failure(std::string(e.what()) + " (" + std::to_string(layout_degenerate) +
+                                  " triangles of the solution break the triangle inequality; smallest angle " +
+                                  std::to_string(smallest_angle * 180 / pi) + " degrees)",
+                              e.residual());
+  }
   emb.corner_klein.resize(std::size_t(nf));
   emb.corner_poincare.resize(std::size_t(nf));
   for(int f = 0; f < nf; ++f)

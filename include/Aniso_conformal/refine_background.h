@@ -36,12 +36,23 @@ struct Refinement_report {
   std::size_t vertices_after = 0;   ///< and after
   std::size_t splits = 0;           ///< edges split
   /// the edge length, in the metric, of an equilateral mesh with the requested number of vertices and the
-  /// background's area in the metric: no background edge is left longer than twice that
+  /// background's area in the metric: no background edge is left longer than twice that, except where
+  /// `capped` edges were
   double output_edge_length = 0;
   double longest_edge = 0;          ///< the longest background edge in the metric at the end
+  /// edges created by a split whose measured length exceeded `0.95` times the split edge's key, and whose
+  /// key was capped there (each counted once per triangle it was created in): where the metric turns fast
+  /// along an edge, an edge left longer than `2 h` (see `refine_background()`)
+  std::size_t capped = 0;
 };
 
 namespace internal {
+
+// the least relative decrease of the refinement's keys from a split edge to the edges its split creates:
+// Rivara's bisection in a constant metric decreases them by sqrt(3) / 2 (a median of a triangle whose
+// longest side is split) or 1 / 2 (the halves); 0.95 leaves that alone and stops a chain of splits whose
+// measured lengths do not decrease within log(l / 2 h) / log(1 / 0.95) generations
+constexpr double refinement_decrease = 0.95;
 
 // the length in the metric of the segment pq with metric square roots Qp and Qq at its ends
 inline double metric_segment_length(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Matrix3d& Qp,
@@ -72,6 +83,20 @@ inline double metric_area(const Intrinsic_triangulation& itri)
  * background triangles, whose linear density represents the conformal factor). A background that
  * already meets both is left as it is.
  *
+ * An edge is split by its key: its length as measured at the start, or, for an edge the refinement
+ * created, its length but at most `0.95` times the key of the split edge it came from. The measured
+ * length (the norm of the mean of the two ends' square roots of the metric applied to the edge, the
+ * midpoint rule) is not monotone under splitting where the metric's principal directions turn along an
+ * edge: the mean of two square roots underestimates the square root of the mean (the square root is
+ * operator concave), so an edge from a new vertex inside a triangle to a far corner can measure as long as
+ * the edge just split, and the bisection cycled without end (CGAL's part.off with the curvature metric at
+ * 2000 vertices: vertices inserted over and over a third and two thirds along one input edge, in ever
+ * thinner triangles, until the bound below). The keys make termination hold by construction: once the
+ * background has `2 n` vertices only keys above `2 h` are split, a key `k` generations from an edge of the
+ * start is at most `0.95^k` times the longest edge of the start, and each split creates at most four edges,
+ * so the splits are finitely many. Where a key is capped the edge may be left longer than `2 h` in the
+ * measured length (`Refinement_report::capped`, `Refinement_report::longest_edge`).
+ *
  * Splitting the globally longest edge is Rivara's longest-edge bisection: the split edge is the longest of
  * both its triangles, so the smallest angle of the background never falls below half of what it was (in
  * the lengths measured). The new vertex is the midpoint of the edge. Before any flip every edge of `itri`
@@ -90,7 +115,8 @@ inline double metric_area(const Intrinsic_triangulation& itri)
  * \returns what it did
  * \throws Invalid_input if the metric is not positive definite at a new vertex
  * \throws Remeshing_failure if the refinement needs more than `64 n + 4 V` vertices (`V` those of the
- *         input): a metric that varies faster than any background of that size resolves
+ *         input): a metric that varies faster than any background of that size resolves (the keys bound the
+ *         number of splits, not this count)
  */
 template <typename AnisotropicMetric>
 Refinement_report refine_background(Intrinsic_triangulation& itri, const Input_surface& surface, const AnisotropicMetric& metric,
@@ -133,8 +159,13 @@ Refinement_report refine_background(Intrinsic_triangulation& itri, const Input_s
     ++report.splits;
     // the new edges: from m to the head of each outgoing halfedge, and to the tail of the halfedge that
     // enters m in the same face (on the boundary, the one neighbour no outgoing halfedge reaches)
+    const double cap = internal::refinement_decrease * std::get<0>(top);  // the key of an edge this split creates
     for(int o : itri.outgoing_halfedges(m))
-      for(int x : {itri.head(o), itri.opposite_vertex(o)}) queue.emplace(length(m, x), m, x);
+      for(int x : {itri.head(o), itri.opposite_vertex(o)}) {
+        const double l = length(m, x);
+        if(l > cap) ++report.capped;
+        queue.emplace(std::min(l, cap), m, x);
+      }
   }
   report.vertices_after = itri.number_of_vertices();
   for(int h = 0; h < int(itri.number_of_halfedges()); ++h)

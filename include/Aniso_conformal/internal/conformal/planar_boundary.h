@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/conformal/layout.h>
+#include <Aniso_conformal/internal/conformal/newton_solver.h>
 #include <Aniso_conformal/internal/domains/simple_polygon_2.h>
 
 #include <Eigen/Core>
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 // The boundary of a disk in the plane, for conformal_embedding(): its loop of halfedges, the turning
@@ -167,6 +169,76 @@ void lay_out_planar_embedding(const Intrinsic_triangulation& itri, const std::ve
   emb.conformal_factor = vertex_conformal_factors(itri, domain_area);
   emb.boundary_turning.assign(std::size_t(nv), 0.0);
   for(int h : loop) emb.boundary_turning[std::size_t(itri.tail(h))] = pi - angle_sum[std::size_t(itri.tail(h))];
+}
+
+/*
+ * Splits, at their midpoints, the boundary edges of `itri` that an interior vertex encroaches on: the
+ * angle of their triangle at its third vertex, an interior one, is obtuse. No intrinsic Delaunay flip
+ * can remove such a triangle (its long edge is on the boundary), and the conformal scaling can flatten
+ * it onto that edge: the far vertex, scaled down, ends up on the boundary and the layout inverts
+ * (CGAL's cylinder_locally_refined.off, isotropic: thin triangles along the boundary with angles of
+ * 96 degrees at an interior vertex). As in Ruppert's refinement, the edges are split and `itri` made
+ * intrinsic Delaunay again until no boundary edge is encroached on: each split halves a boundary edge and
+ * the interior vertices stay where they are, so this ends once the boundary edges are shorter than twice
+ * the distance from the interior vertices to the boundary; `max_rounds` bounds the rounds anyway.
+ *
+ * The lengths stay those of `itri`'s flat metric: the halves of a split edge, and the median of its
+ * triangle (Apollonius). The new vertex is the midpoint of a boundary edge, a segment of an input
+ * boundary edge, so a point of the input: its barycentric coordinates are the mean of its ends' (the
+ * three largest weights kept) and its metric square root the mean of theirs. `itri` must be intrinsic
+ * Delaunay for its lengths (flips are made with `flips_per_edge`). Returns the number of splits.
+ */
+inline std::size_t split_encroached_boundary_edges(Intrinsic_triangulation& itri, std::size_t flips_per_edge, const std::string& who,
+                                                   int max_rounds = 32)
+{
+  std::size_t splits = 0;
+  for(int round = 0; round < max_rounds; ++round) {
+    std::vector<std::pair<int, int>> encroached;  // ends (tail, head) of the boundary halfedges
+    for(int h = 0; h < int(itri.number_of_halfedges()); ++h) {
+      if(itri.twin(h) >= 0 || itri.is_boundary_vertex(itri.opposite_vertex(h))) continue;
+      const double ab = itri.length(h), bc = itri.length(itri.next(h)), ca = itri.length(itri.prev(h));
+      if(ab * ab > bc * bc + ca * ca) encroached.emplace_back(itri.tail(h), itri.head(h));
+    }
+    if(encroached.empty()) break;
+    for(const auto& e : encroached) {
+      const int h = itri.find_halfedge(e.first, e.second);
+      if(h < 0) continue;
+      const int a = e.first, b = e.second;
+      const double ab = itri.length(h), bc = itri.length(itri.next(h)), ca = itri.length(itri.prev(h));
+      // the point: the mean of the ends' barycentric coordinates over the input vertices
+      std::vector<std::pair<std::size_t, double>> w;
+      for(const Surface_point* p : {&itri.point(a), &itri.point(b)})
+        for(int k = 0; k < 3; ++k) {
+          if(p->barycentric[k] == 0) continue;
+          auto it = std::find_if(w.begin(), w.end(), [&](const std::pair<std::size_t, double>& x) { return x.first == p->vertices[std::size_t(k)]; });
+          if(it == w.end()) w.emplace_back(p->vertices[std::size_t(k)], 0.5 * p->barycentric[k]);
+          else it->second += 0.5 * p->barycentric[k];
+        }
+      std::sort(w.begin(), w.end(), [](const std::pair<std::size_t, double>& x, const std::pair<std::size_t, double>& y) { return x.second > y.second; });
+      Surface_point sp;
+      sp.position = 0.5 * (itri.position(a) + itri.position(b));
+      double total = 0;
+      for(std::size_t k = 0; k < 3; ++k) {
+        const std::size_t i = std::min(k, w.size() - 1);
+        sp.vertices[k] = w[i].first;
+        sp.barycentric[int(k)] = k < w.size() ? w[k].second : 0.0;
+        total += sp.barycentric[int(k)];
+      }
+      sp.barycentric /= total;
+      const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
+      // the new halfedges: a->m and m->b on the boundary, m->c inside (Intrinsic_triangulation::split)
+      for(int o : itri.outgoing_halfedges(m)) {
+        const int x = itri.head(o);
+        if(x == a || x == b) itri.set_length(o, 0.5 * ab);
+        else itri.set_length(o, 0.5 * std::sqrt(std::max(0.0, 2 * bc * bc + 2 * ca * ca - ab * ab)));
+      }
+      for(int o : itri.outgoing_halfedges(m))  // the boundary halfedge that enters m has no outgoing twin
+        if(itri.twin(itri.prev(o)) < 0) itri.set_length(itri.prev(o), 0.5 * ab);
+      ++splits;
+    }
+    make_intrinsic_delaunay(itri, flips_per_edge, who);
+  }
+  return splits;
 }
 
 // `true` if the layout `uv` of the boundary `loop` of `itri` is a simple counterclockwise polygon whose
