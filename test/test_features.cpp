@@ -468,3 +468,47 @@ BOOST_AUTO_TEST_CASE(without_features_no_crease_site_is_placed)
   BOOST_TEST(out.fixed_vertices == 0u);
   BOOST_TEST(out.kept_edges.empty());
 }
+
+BOOST_AUTO_TEST_CASE(a_crease_edge_the_dual_missed_is_recovered_by_one_flip_or_counted)
+{
+  // a 3 x 3 grid of the unit square's points (vertex i + 3 j at (i, j)), each cell cut along its diagonal
+  // from (i, j) to (i + 1, j + 1); as input and as "output"
+  std::vector<Eigen::Vector3d> points;
+  for(int j = 0; j < 3; ++j)
+    for(int i = 0; i < 3; ++i) points.push_back(Eigen::Vector3d(i, j, 0));
+  std::vector<AC::Input_surface::Face> faces;
+  for(std::size_t j = 0; j < 2; ++j)
+    for(std::size_t i = 0; i < 2; ++i) {
+      const std::size_t v = i + 3 * j;
+      faces.push_back({{v, v + 1, v + 4}});
+      faces.push_back({{v, v + 4, v + 3}});
+    }
+  const AC::Input_surface grid(points, faces);
+  AC::Remeshed_surface out;
+  out.points = points;
+  out.faces.assign(faces.begin(), faces.end());
+  for(std::size_t v = 0; v < points.size(); ++v) out.surface_points.push_back(AC::Surface_point::at_vertex(v, points[v]));
+  // 2 -> 4 crosses the one edge (1, 5): flipped; 4 -> 5 is an edge already; 0 -> 8 crosses two edges: counted
+  const auto joined = AC::internal::recover_crease_edges(grid, out, {{2, 4, 5}, {0, 8}}, {0, 0});
+  BOOST_TEST(joined.first == 1u);
+  BOOST_TEST(joined.second == 1u);
+  std::vector<std::array<std::size_t, 2>> kept = out.kept_edges;
+  std::sort(kept.begin(), kept.end());
+  BOOST_TEST((kept == std::vector<std::array<std::size_t, 2>>{{{2, 4}}, {{4, 5}}}));
+  // still a valid surface of 8 triangles, none inverted, with the edge (2, 4) and without (1, 5)
+  BOOST_TEST(out.faces.size() == 8u);
+  std::vector<AC::Input_surface::Face> after(out.faces.begin(), out.faces.end());
+  const AC::Input_surface flipped(out.points, after);
+  BOOST_TEST(flipped.is_disk());
+  bool has24 = false, has15 = false;
+  for(const auto& f : out.faces) {
+    BOOST_TEST(((out.points[f[1]] - out.points[f[0]]).cross(out.points[f[2]] - out.points[f[0]]).z() > 0));
+    for(int k = 0; k < 3; ++k) {
+      const std::size_t a = std::min(f[k], f[(k + 1) % 3]), b = std::max(f[k], f[(k + 1) % 3]);
+      has24 = has24 || (a == 2 && b == 4);
+      has15 = has15 || (a == 1 && b == 5);
+    }
+  }
+  BOOST_TEST(has24);
+  BOOST_TEST(!has15);
+}

@@ -223,8 +223,12 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
       for(int k = 0; k < 3; ++k) face_of[{out.faces[f][std::size_t(k)], out.faces[f][std::size_t((k + 1) % 3)]}] = f;
   };
   index();
-  std::vector<std::size_t> valence(out.points.size(), 0);
-  for(const auto& e : face_of) ++valence[e.first.first];
+  std::vector<std::size_t> valence(out.points.size(), 0);  // neighbours (on the boundary too)
+  for(const auto& e : face_of)
+    if(e.first.first < e.first.second || !face_of.count({e.first.second, e.first.first})) {
+      ++valence[e.first.first];
+      ++valence[e.first.second];
+    }
   const double side = planar_side(surface);
   auto kept = [&](std::size_t a, std::size_t b) {
     const std::array<std::size_t, 2> e = {{std::min(a, b), std::max(a, b)}};
