@@ -40,10 +40,11 @@ namespace Aniso_conformal {
 namespace internal {
 
 // The pipeline in `Domain`, with the caller's parameters read into values and its visitor behind a
-// handle (canonical_parameters.h): compiled once per domain and metric.
+// handle (canonical_parameters.h): compiled once per domain and metric. With `follow_creases` the
+// creases of a closed domain are followed (crease_sites.h); `creases_tried` says whether they were.
 template <typename Domain, typename AnisotropicMetric>
-Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
-                              const Remeshing_options& options, Visitor_handle& vis)
+Remeshed_surface run_pipeline_once(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                                   const Remeshing_options& options, Visitor_handle& vis, bool follow_creases, bool& creases_tried)
 {
   const auto np = canonical_parameters(options, vis);
   const std::size_t n = options.number_of_vertices;
@@ -75,7 +76,8 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
   // in a closed domain the creases are kept as chains of output edges (issue 15, item 2): their background
   // pieces refined here, fixed sites along them below
-  const Feature_graph* creases = closed && !features.curves.empty() ? &features : nullptr;
+  const Feature_graph* creases = follow_creases && closed && !features.curves.empty() ? &features : nullptr;
+  creases_tried = creases != nullptr;
   Intrinsic_triangulation itri = patches ? metric_and_edge_lengths(background, Patched_metric<AnisotropicMetric>(metric, *patches), n, np,
                                                                    vis, result, patches.get(), &surface, &loop_edge_length, creases)
                                          : metric_and_edge_lengths(surface, metric, n, np, vis, result, nullptr, nullptr, nullptr, creases);
@@ -118,7 +120,7 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
           corner_index[corners[j]] = j;
         }
         crease_sites = place_crease_sites(itri, features, crease_chains(itri, surface, features), h, std::move(taken),
-                                          n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)));
+                                          n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), corners);
         for(std::size_t c = 0; c < features.curves.size(); ++c) {
           const Feature_curve& curve = features.curves[c];
           std::vector<std::size_t> chain;
@@ -169,6 +171,27 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   const auto measure_start = std::chrono::steady_clock::now();
   result.features = measure_features(surface, features, out.points, out.faces);
   result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
+  return out;
+}
+
+// The pipeline, following the creases in a closed domain; if that run fails (Remeshing_failure: the
+// crease pieces split in the background can make a thin or sharply folded input's embedding fail, as on
+// test/data/cases/pillow_005.off at 150 vertices), the run without them, as before issue 15 item 2, whose
+// result (or failure) stands, with the first run's reason in Remeshing_result::creases_not_followed.
+template <typename Domain, typename AnisotropicMetric>
+Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                              const Remeshing_options& options, Visitor_handle& vis)
+{
+  bool tried = false;
+  std::string reason;
+  try {
+    return run_pipeline_once<Domain>(surface, metric, result, options, vis, true, tried);
+  } catch(const Remeshing_failure& e) {
+    if(!tried) throw;
+    reason = e.what();
+  }
+  Remeshed_surface out = run_pipeline_once<Domain>(surface, metric, result, options, vis, false, tried);
+  result.creases_not_followed = reason;
   return out;
 }
 

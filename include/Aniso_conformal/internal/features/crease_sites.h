@@ -15,6 +15,7 @@
 #include <Aniso_conformal/refine_background.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
@@ -151,11 +152,20 @@ struct Crease_sites {
 // around a closed curve max(3, round(L / h)); each at the chain vertex (crease_chains()) nearest in arc
 // length, never an end and never a vertex `taken` already (a corner's). In all at most `budget` sites
 // (the curves with most sites lose one first). A curve with a chain too coarse for its sites gets fewer
-// (the vertex of the previous site is not taken twice).
+// (the vertex of the previous site is not taken twice). A site closer than half of `h` (in the metric, as
+// corners_to_fix() measures) to a fixed corner (`fixed`) or to a site placed before it is left out: two
+// fixed sites that close make a sliver (CGAL's helmet at 1000 vertices, its 42 short crease curves:
+// theta_min 8.4 degrees with them, 23.9 without creases followed).
 inline Crease_sites place_crease_sites(const Intrinsic_triangulation& itri, const Feature_graph& g,
                                        const std::vector<std::vector<std::pair<double, int>>>& chains, double h,
-                                       std::vector<char> taken, std::size_t budget)
+                                       std::vector<char> taken, std::size_t budget, const std::vector<std::size_t>& fixed = {})
 {
+  std::vector<int> placed(fixed.begin(), fixed.end());
+  auto apart = [&](int v) {
+    for(int w : placed)
+      if((0.5 * (itri.Q(v) + itri.Q(w)) * (itri.position(w) - itri.position(v))).norm() < 0.5 * h) return false;
+    return true;
+  };
   const std::size_t nc = g.curves.size();
   std::vector<std::vector<double>> arc(nc);  // metric arc length at each chain vertex (closed: plus the way back)
   std::vector<std::size_t> count(nc, 0);
@@ -198,8 +208,9 @@ inline Crease_sites place_crease_sites(const Intrinsic_triangulation& itri, cons
       if(!closed && best + 1 >= ch.size()) best = ch.size() - 2;
       if(!closed && best == 0) continue;  // a chain of two vertices: its ends only
       const int v = ch[best % ch.size()].second;
-      if(taken[std::size_t(v)]) continue;
+      if(taken[std::size_t(v)] || !apart(v)) continue;
       taken[std::size_t(v)] = 1;
+      placed.push_back(v);
       out.vertices[c].push_back(v);
     }
   }
@@ -209,8 +220,9 @@ inline Crease_sites place_crease_sites(const Intrinsic_triangulation& itri, cons
 // Recovers and locks the crease edges of the output `out`: `chains` lists, per curve, its sites' output
 // vertex indices in order along it (with its fixed corners at the ends; `closed` per chain: the last is
 // joined to the first). A pair not joined by an output edge is joined by flipping the one edge (c, d)
-// whose two triangles (a, c, d) and (d, c, b) hold it, when c and d keep 3 neighbours or more and neither
-// new triangle is inverted (triangle_is_inverted()); the pairs joined are appended to
+// whose two triangles (a, c, d) and (d, c, b) hold it, when c and d keep 3 neighbours or more, neither
+// new triangle is inverted (triangle_is_inverted()) and their smallest angle is at least the old two's or
+// 20 degrees; the pairs joined are appended to
 // `out.kept_edges`. Returns (pairs joined by a flip, pairs left unjoined).
 inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surface& surface, Remeshed_surface& out,
                                                                 const std::vector<std::vector<std::size_t>>& chains,
@@ -267,6 +279,20 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
             inverted = inverted || triangle_is_inverted(surface, out.points[T[0]], out.points[T[1]], out.points[T[2]],
                                                         out.surface_points[T[0]], out.surface_points[T[1]], out.surface_points[T[2]], side);
           if(inverted) continue;
+          // nor a sliver: the smallest angle of the two new triangles (in space) at least that of the two
+          // old ones, or 20 degrees (a flip joining two corners across a short crease made a 4-degree
+          // triangle on CGAL's helmet)
+          auto smallest_angle = [&](const std::array<std::size_t, 3>& T) {
+            double m = 180;
+            for(int i = 0; i < 3; ++i) {
+              const Eigen::Vector3d u = out.points[T[std::size_t((i + 1) % 3)]] - out.points[T[std::size_t(i)]],
+                                    v = out.points[T[std::size_t((i + 2) % 3)]] - out.points[T[std::size_t(i)]];
+              m = std::min(m, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846);
+            }
+            return m;
+          };
+          const double before = std::min(smallest_angle(F), smallest_angle(G)), after = std::min(smallest_angle(T1), smallest_angle(T2));
+          if(after < std::min(before, 20.0)) continue;
           const std::size_t g_face = g->second;
           out.faces[f] = T1;
           out.faces[g_face] = T2;
