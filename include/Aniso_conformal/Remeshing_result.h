@@ -66,6 +66,17 @@ struct Remeshing_result {
   /// `feature_edges` and `feature_vertices`) and how many
   /// of them the output keeps (`measure_features()`); all zero when the input has none
   Feature_report features;
+  /// fixed sites placed along the input's crease curves in a closed domain (issue 15, item 2; the curves'
+  /// corners not counted); 0 in the plane or without a crease
+  std::size_t crease_sites = 0;
+  /// pairs of consecutive crease sites (or corners) the dual did not join, joined by one output edge flip
+  std::size_t crease_edges_recovered = 0;
+  /// pairs of consecutive crease sites (or corners) left without an output edge between them (the crease
+  /// coverage of `features` then misses that piece)
+  std::size_t crease_edges_missing = 0;
+  /// empty, or why the creases were not followed: the run with crease sites failed with this message
+  /// (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)
+  std::string creases_not_followed;
   /// what the domain measured (flat torus: the lattice; sphere: the angle distortion; hyperbolic disk:
   /// the group's relation error and the tiles reached), written by the report writers as they are
   Domain_diagnostics domain_diagnostics;

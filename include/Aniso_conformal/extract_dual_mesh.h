@@ -31,6 +31,9 @@ struct Remeshed_surface {
   /// the first `fixed_vertices` vertices are the fixed sites of the CVT (boundary sites of the plane, the
   /// input's corners kept in a closed domain): later stages (`optimize_surface_mesh()`) never move them
   std::size_t fixed_vertices = 0;
+  /// output edges on the input's creases, as (smaller, larger) vertex index pairs, joining consecutive
+  /// crease sites (closed domains, issue 15 item 2): later stages (`optimize_surface_mesh()`) never flip them
+  std::vector<std::array<std::size_t, 2>> kept_edges;
 };
 
 /*!

@@ -69,7 +69,8 @@ struct Surface_optimization_report {
  * can, and a repair may lower those figures. A round that changes nothing ends the stage.
  *
  * Kept: the number of vertices, the topology (flips keep the genus and the boundary; an edge already
- * present is never created), the boundary vertices and the first `mesh.fixed_vertices` vertices (the CVT's fixed sites: the input's corners; fixed), every vertex on the input (moved vertices get
+ * present is never created), the boundary vertices and the first `mesh.fixed_vertices` vertices (the CVT's fixed sites: the input's corners
+ * and crease sites; fixed), the edges of `mesh.kept_edges` (the creases' output edges: never flipped), every vertex on the input (moved vertices get
  * their new `Surface_point`, planar ones keep z = 0). Faces are rewritten only if an edge was flipped
  * (the same triangles in the same order otherwise). Time O(rounds * (E + V log F)), serial (a user's
  * metric model need not be safe for concurrent calls).

@@ -70,7 +70,7 @@ enum class Planar_boundary {
  */
 enum class Surface_optimization {
   OFF,     ///< never: the dual mesh of stage 5 is the output (refused if it has an inverted triangle)
-  REPAIR,  ///< only when the dual mesh has inverted triangles, to repair them (the default)
+  REPAIR,  ///< only when the dual mesh has inverted triangles, to repair them, or follows creases (`Remeshed_surface::kept_edges`) (the default)
   ALWAYS   ///< on every output
 };
 

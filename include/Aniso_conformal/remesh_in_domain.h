@@ -13,6 +13,7 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/features/crease_sites.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
@@ -39,10 +40,11 @@ namespace Aniso_conformal {
 namespace internal {
 
 // The pipeline in `Domain`, with the caller's parameters read into values and its visitor behind a
-// handle (canonical_parameters.h): compiled once per domain and metric.
+// handle (canonical_parameters.h): compiled once per domain and metric. With `follow_creases` the
+// creases of a closed domain are followed (crease_sites.h); `creases_tried` says whether they were.
 template <typename Domain, typename AnisotropicMetric>
-Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
-                              const Remeshing_options& options, Visitor_handle& vis)
+Remeshed_surface run_pipeline_once(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                                   const Remeshing_options& options, Visitor_handle& vis, bool follow_creases, bool& creases_tried)
 {
   const auto np = canonical_parameters(options, vis);
   const std::size_t n = options.number_of_vertices;
@@ -72,9 +74,13 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
 
   // 1. metric, 2. edge lengths
   double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
+  // in a closed domain the creases are kept as chains of output edges (issue 15, item 2): their background
+  // pieces refined here, fixed sites along them below
+  const Feature_graph* creases = follow_creases && closed && !features.curves.empty() ? &features : nullptr;
+  creases_tried = creases != nullptr;
   Intrinsic_triangulation itri = patches ? metric_and_edge_lengths(background, Patched_metric<AnisotropicMetric>(metric, *patches), n, np,
-                                                                   vis, result, patches.get(), &surface, &loop_edge_length)
-                                         : metric_and_edge_lengths(surface, metric, n, np, vis, result);
+                                                                   vis, result, patches.get(), &surface, &loop_edge_length, creases)
+                                         : metric_and_edge_lengths(surface, metric, n, np, vis, result, nullptr, nullptr, nullptr, creases);
   result.seconds[int(Stage::METRIC)] += features_seconds;
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
@@ -101,6 +107,33 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
       if(patches)  // the loops' corners are placed with their sites
         corners.erase(std::remove_if(corners.begin(), corners.end(), [&](std::size_t v) { return itri.seam(int(v)) >= 0; }), corners.end());
       auto fixed = corner_sites<Domain>(emb, itri, corners);
+      // the crease sites after the corners, at equal metric arc length along each curve (crease_sites.h)
+      Crease_sites crease_sites;
+      std::vector<std::vector<std::size_t>> crease_chain;  // per curve, its sites as output vertices, with its fixed corners
+      std::vector<char> crease_closed;
+      if(creases) {
+        const double h = patches ? loop_edge_length : result.refinement.output_edge_length;
+        std::vector<char> taken(itri.number_of_vertices(), 0);
+        std::vector<std::size_t> corner_index(itri.number_of_vertices(), std::size_t(-1));
+        for(std::size_t j = 0; j < corners.size(); ++j) {
+          taken[corners[j]] = 1;
+          corner_index[corners[j]] = j;
+        }
+        crease_sites = place_crease_sites(itri, features, crease_chains(itri, surface, features), h, std::move(taken),
+                                          n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), corners);
+        for(std::size_t c = 0; c < features.curves.size(); ++c) {
+          const Feature_curve& curve = features.curves[c];
+          std::vector<std::size_t> chain;
+          if(!curve.closed && corner_index[curve.vertices.front()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.front()]);
+          for(int v : crease_sites.vertices[c]) {
+            chain.push_back(fixed.size());
+            fixed.push_back(seam_site<Domain>(emb, itri, v));
+          }
+          if(!curve.closed && corner_index[curve.vertices.back()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.back()]);
+          crease_chain.push_back(std::move(chain));
+          crease_closed.push_back(curve.closed ? 1 : 0);
+        }
+      }
       Loop_sites loops;
       std::vector<std::size_t> first;
       if(patches) {
@@ -116,6 +149,12 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
       Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
       Remeshed_surface dual = cvt_and_dual(traits);
       if(patches) remove_patch_triangles(dual, loops, first, surface.number_of_vertices());
+      if(creases) {
+        const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
+        result.crease_sites = crease_sites.size();
+        result.crease_edges_recovered = joined.first;
+        result.crease_edges_missing = joined.second;
+      }
       result.boundary_sites = loops.size();  // the crease corners are not boundary
       return dual;
     } else {
@@ -132,6 +171,27 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   const auto measure_start = std::chrono::steady_clock::now();
   result.features = measure_features(surface, features, out.points, out.faces);
   result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
+  return out;
+}
+
+// The pipeline, following the creases in a closed domain; if that run fails (Remeshing_failure: the
+// crease pieces split in the background can make a thin or sharply folded input's embedding fail, as on
+// test/data/cases/pillow_005.off at 150 vertices), the run without them, as before issue 15 item 2, whose
+// result (or failure) stands, with the first run's reason in Remeshing_result::creases_not_followed.
+template <typename Domain, typename AnisotropicMetric>
+Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                              const Remeshing_options& options, Visitor_handle& vis)
+{
+  bool tried = false;
+  std::string reason;
+  try {
+    return run_pipeline_once<Domain>(surface, metric, result, options, vis, true, tried);
+  } catch(const Remeshing_failure& e) {
+    if(!tried) throw;
+    reason = e.what();
+  }
+  Remeshed_surface out = run_pipeline_once<Domain>(surface, metric, result, options, vis, false, tried);
+  result.creases_not_followed = reason;
   return out;
 }
 

@@ -121,6 +121,8 @@ public:
     m_Q.resize(n);
     // serial: a user's metric model need not be safe for concurrent calls
     for(std::size_t i = 0; i < n; ++i) m_Q[i] = symmetric_sqrt(m_metric.tensor(m_out.surface_points[i]));
+    m_kept = m_out.kept_edges;
+    std::sort(m_kept.begin(), m_kept.end());
     m_fixed.assign(n, 0);
     for(V v : m_mesh.vertices())
       if(m_mesh.is_isolated(v) || m_mesh.is_border(v, false) || std::size_t(v.idx()) < m_out.fixed_vertices) m_fixed[v.idx()] = 1;
@@ -142,6 +144,9 @@ public:
       const V a = m_mesh.source(h), b = m_mesh.target(h), c = m_mesh.target(m_mesh.next(h)),
               d = m_mesh.target(m_mesh.next(m_mesh.opposite(h)));
       if(c == d || m_mesh.halfedge(c, d) != Mesh::null_halfedge()) continue;  // the flip would duplicate an edge
+      if(!m_out.kept_edges.empty() &&
+         std::binary_search(m_kept.begin(), m_kept.end(), std::array<std::size_t, 2>{{std::min<std::size_t>(a.idx(), b.idx()), std::max<std::size_t>(a.idx(), b.idx())}}))
+        continue;  // a crease edge (Remeshed_surface::kept_edges)
       // faces (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c)
       Local_score before, after;
       before.add(figures(a, b, c));
@@ -298,6 +303,7 @@ private:
   Mesh m_mesh;
   std::vector<Eigen::Matrix3d> m_Q;
   std::vector<char> m_fixed;
+  std::vector<std::array<std::size_t, 2>> m_kept;  // Remeshed_surface::kept_edges, sorted: never flipped
   bool m_flipped = false;
 };
 

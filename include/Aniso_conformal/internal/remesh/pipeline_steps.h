@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_INTERNAL_REMESH_PIPELINE_STEPS_H
 
 #include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Feature_graph.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/Remeshing_result.h>
@@ -12,6 +13,7 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/features/crease_sites.h>
 #include <Aniso_conformal/internal/optimize/triangle_orientation.h>
 #include <Aniso_conformal/internal/parallel_for.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
@@ -83,12 +85,14 @@ inline std::size_t mark_corners(const Input_surface& s, Intrinsic_triangulation&
 // for `n` output vertices, the adjusted lengths. With `patches` (`surface` is then `patches->closed`, the
 // `input` with its holes closed, and `metric` extends the input's onto the patches) the patches and seams
 // are tagged, the seams refined to a quarter of the output edge length `*edge_length` (measured without
-// the patches, returned there).
+// the patches, returned there). With `creases` (the input's feature graph, in a closed domain) the
+// background's pieces of the crease edges are refined to a quarter of the output edge length too
+// (refine_creases(); nothing happens without a crease curve).
 template <typename AnisotropicMetric, typename NamedParameters, typename Visitor>
 Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, const AnisotropicMetric& metric, std::size_t n,
                                                 const NamedParameters& np, Visitor& vis, Remeshing_result& result,
                                                 const Hole_patches* patches = nullptr, const Input_surface* input = nullptr,
-                                                double* edge_length = nullptr)
+                                                double* edge_length = nullptr, const Feature_graph* creases = nullptr)
 {
   Stage_timer t1(vis, Stage::METRIC);
   Intrinsic_triangulation itri(surface, compute_metric_square_roots(surface, metric));
@@ -99,6 +103,13 @@ Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, co
   result.refinement = refine_background(itri, surface, metric, n);
   if(patches)
     refine_seams(itri, *input, 0.25 * edge_length_without_patches(itri, n), 64 * n + 4 * result.refinement.vertices_before);
+  // to a third of the output edge length: a quarter (as the loops) split each crease edge of
+  // cube_grid.off (test/data/cases) in 4 at 120 and 150 vertices, and the spherical embedding's intrinsic
+  // Delaunay flips then never ended (a regular grid of ties); 0.3 to 0.5 kept 100 % of its creases at
+  // every size tried from 60 to 600
+  if(creases && !creases->curves.empty())
+    refine_creases(itri, input ? *input : surface, *creases, (1.0 / 3.0) * edge_length_without_patches(itri, n),
+                   64 * n + 4 * result.refinement.vertices_before + itri.number_of_vertices());
   result.adjustment = adjust_edge_lengths(itri, surface, np);
   if(patches) {
     std::size_t seam_vertices = 0;
@@ -207,14 +218,17 @@ inline std::size_t count_inverted_triangles(const Input_surface& surface, const 
 }
 
 // Stage 6 of 7, before the quality: the surface optimisation (optimize_surface_mesh()) when `mode` asks for
-// it, on every output or only on one with inverted triangles, to repair them
+// it, on every output or only on one with inverted triangles, to repair them, or with creases followed
+// (`out.kept_edges`): a free site of the CVT can settle on a crease between two crease sites, and its
+// vertex then makes a flat triangle with their edge (CGAL's fandisk at 2000: theta_min 5.8 degrees, 19.3
+// after the optimisation, which moves it off)
 template <typename AnisotropicMetric, typename Visitor>
 void optimize_output(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out,
                      Surface_optimization mode, Visitor& vis, Remeshing_result& result, unsigned threads = 0)
 {
   Stage_timer t(vis, Stage::SURFACE_OPTIMIZATION);
   if(mode == Surface_optimization::ALWAYS ||
-     (mode == Surface_optimization::REPAIR && count_inverted_triangles(surface, out, threads) > 0))
+     (mode == Surface_optimization::REPAIR && (!out.kept_edges.empty() || count_inverted_triangles(surface, out, threads) > 0)))
     result.surface_optimization = optimize_surface_mesh(surface, metric, out, defaults::surface_optimization_rounds, vis);
   result.seconds[int(Stage::SURFACE_OPTIMIZATION)] = t.stop(vis);
 }
