@@ -86,7 +86,7 @@ inline std::size_t mark_corners(const Input_surface& s, Intrinsic_triangulation&
 // `input` with its holes closed, and `metric` extends the input's onto the patches) the patches and seams
 // are tagged, the seams refined to a quarter of the output edge length `*edge_length` (measured without
 // the patches, returned there). With `creases` (the input's feature graph, in a closed domain) the
-// background's pieces of the crease edges are refined to a quarter of the output edge length too
+// background's pieces of the crease edges are refined to a third of the output edge length
 // (refine_creases(); nothing happens without a crease curve).
 template <typename AnisotropicMetric, typename NamedParameters, typename Visitor>
 Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, const AnisotropicMetric& metric, std::size_t n,
