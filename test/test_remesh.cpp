@@ -4,18 +4,24 @@
 // Integration tests of the pipeline in the plane, remesh_in_domain<Planar_domain>() (what remesh() runs
 // for a disk): the paper's planar figures against the quality bar, the BGL entry point on Surface_mesh
 // and Polyhedron_3, determinism, disk surfaces, every error path of the entry point, and the
-// ParametricDomain / ParametricDomainTraits concept checks of the planar models. This module compiles
-// the plane only; test_properties covers remesh()'s choice of the domain.
+// ParametricDomain / ParametricDomainTraits concept checks of the planar models, images end to end (a CT
+// crop and the whole slice), the bundled face mask and the graded square background. This module
+// compiles the plane only; test_properties covers remesh()'s choice of the domain.
 
 #define BOOST_TEST_MODULE Aniso_conformal_remesh
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Analytic_metric_2.h>
+#include <Aniso_conformal/Curvature_metric.h>
+#include <Aniso_conformal/Image_metric.h>
 #include <Aniso_conformal/Paper_metrics.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/IO/read_metric_file.h>
+#include <Aniso_conformal/IO/read_image.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/IO/write_report.h>
+#include <Aniso_conformal/make_image_background.h>
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/remesh_in_domain.h>
@@ -29,10 +35,14 @@
 #include "domain_concept_checks.h"
 #include "mesh_checks.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
+#include <string>
 #include <utility>
 
 namespace AC = Aniso_conformal;
@@ -89,6 +99,22 @@ void fill_mesh(const AC::Input_surface& s, Mesh& m)
     std::array<vd, 3> t = {{v[f[0]], v[f[1]], v[f[2]]}};
     BOOST_REQUIRE(CGAL::Euler::add_face(t, m) != boost::graph_traits<Mesh>::null_face());
   }
+}
+
+const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
+
+// the message of the Invalid_input that `f` throws
+std::string invalid_input_message(const std::function<void()>& f)
+{
+  try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
+  return "(no Invalid_input)";
+}
+
+bool contains(const std::string& s, const std::string& part)
+{
+  if(s.find(part) != std::string::npos) return true;
+  BOOST_TEST_MESSAGE("'" << s << "' does not contain '" << part << "'");
+  return false;
 }
 
 struct Cancel_after {
@@ -375,3 +401,118 @@ BOOST_AUTO_TEST_CASE(lloyd_also_works)
   BOOST_TEST(r.quality.G_avg >= 0.85);
   for(std::size_t i = 1; i < r.cvt.energy.size(); ++i) BOOST_TEST(r.cvt.energy[i] <= r.cvt.energy[i - 1] * (1 + 1e-12));
 }
+
+// ------------------------------------------------ images, the bundled face mask, square backgrounds
+
+BOOST_AUTO_TEST_CASE(bundled_face_mask_remeshes_as_a_disk)
+{
+  // nefertiti.off: a 299-vertex face scan of disk topology, with a curvature metric
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/nefertiti.off");
+  BOOST_REQUIRE(s.is_disk());
+  AC::Curvature_metric_options o;
+  o.stretch_max = 4;
+  const AC::Curvature_metric metric(s, o);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_plane(s, metric, r, AC::parameters::number_of_vertices(std::size_t(250)));
+  BOOST_TEST(out.points.size() == 250u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  // one disk: Euler characteristic 1, one boundary loop made of the boundary sites
+  const test::Mesh_counts m = test::count_mesh(out.points, out.faces);
+  BOOST_TEST(m.euler == 1);
+  BOOST_TEST(m.boundary_edges == r.boundary_sites);
+  // every output vertex lies on the input: its surface point reproduces it
+  for(std::size_t i = 0; i < out.points.size(); ++i) {
+    const AC::Surface_point& sp = out.surface_points[i];
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for(int k = 0; k < 3; ++k) p += sp.barycentric[k] * s.points()[sp.vertices[k]];
+    BOOST_TEST((p - out.points[i]).norm() < 1e-9);
+  }
+  BOOST_TEST(r.quality.G_avg > 0.75);
+}
+
+
+BOOST_AUTO_TEST_CASE(image_pipeline_end_to_end)
+{
+  // a small crop of the CT image remeshes with its rectangle kept
+  const AC::IO::Image ct = AC::IO::read_image(data_dir + "/images/ct_head_211.png");
+  AC::IO::Image crop;
+  crop.width = 60;
+  crop.height = 50;
+  crop.channels = 1;
+  for(int y = 0; y < crop.height; ++y)
+    for(int x = 0; x < crop.width; ++x) crop.data.push_back(ct.at(x + 80, y + 80, 0));
+  const AC::Image_metric metric(crop, 0.5);
+  const AC::Input_surface bg = AC::make_image_background(crop);
+  AC::Remeshing_result r;
+  const auto out = remesh_plane(bg, metric, r, AC::parameters::number_of_vertices(std::size_t(400)));
+  BOOST_TEST(out.points.size() == 400u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.corners == 4u);
+  BOOST_TEST(std::abs(test::count_mesh(out.points, out.faces).planar_area - 49.0 / 59.0) < 1e-9);
+  BOOST_TEST(r.quality.G_avg > 0.75);
+
+  // the report of this run: its counts (the writer's own checks, on a result filled by hand, are in test_io)
+  const nlohmann::json j = AC::IO::report_json(r);
+  BOOST_TEST(j.at("domain") == "plane");
+  BOOST_TEST(j.at("input").at("vertices") == 3000);
+  BOOST_TEST(j.at("output").at("vertices") == 400);
+  BOOST_TEST(j.at("output").at("corners") == 4);
+  BOOST_TEST(j.at("output").at("boundary_vertices") == r.boundary_sites);
+  BOOST_TEST(j.at("cvt").at("iterations") == r.cvt.iterations);
+}
+
+BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
+{
+  // the whole CT slice: splits stall at the skull's edges (local length repair), the embedding needs
+  // intrinsic Delaunay flips, and the layout's bulging border must not leave flat boundary ears
+  const AC::IO::Image ct = AC::IO::read_image(data_dir + "/images/ct_head_211.png");
+  const AC::Image_metric metric(ct, 0.2);
+  AC::Remeshing_result r;
+  const auto out = remesh_plane(AC::make_image_background(ct), metric, r, AC::parameters::number_of_vertices(std::size_t(1500)));
+  BOOST_TEST(out.points.size() == 1500u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.conformal_flips > 0u);
+  BOOST_TEST(r.quality.theta_min > 5.0);
+  BOOST_TEST(r.quality.G_avg > 0.8);
+
+  // at the paper's s = 0.5: the dual mesh has inverted triangles (23), which the surface optimisation
+  // repairs (before it, a refusal); the output is valid, though its smallest angle is still far below the
+  // issue's bar of 20 degrees (4.4 measured)
+  const auto strong = remesh_plane(AC::make_image_background(ct), AC::Image_metric(ct, 0.5), r,
+                                   AC::parameters::number_of_vertices(std::size_t(3000)));
+  BOOST_TEST(strong.points.size() == 3000u);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.surface_optimization.ran);
+  BOOST_TEST(r.surface_optimization.inverted_before > 0u);
+  BOOST_TEST(r.surface_optimization.inverted_after == 0u);
+  BOOST_TEST(r.quality.theta_min > 0.0);
+  BOOST_TEST(r.quality.G_avg > 0.7);
+}
+
+
+BOOST_AUTO_TEST_CASE(square_background_resolves_the_metric)
+{
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const AC::Input_surface bg = AC::make_square_background(metric, 1000);
+  BOOST_TEST(bg.is_disk());
+  BOOST_TEST(bg.number_of_vertices() > 3000u);  // paper: 5112
+  BOOST_TEST(bg.number_of_vertices() < 8000u);
+  BOOST_TEST(std::abs(test::count_mesh(bg.points(), bg.faces()).planar_area - 1) < 1e-12);
+  // graded like the metric: denser near the origin corner, where the metric is largest
+  std::size_t near = 0, far = 0;
+  for(const auto& p : bg.points()) {
+    if(p.x() < 0.25 && p.y() < 0.25) ++near;
+    if(p.x() > 0.75 && p.y() > 0.75) ++far;
+  }
+  BOOST_TEST(near > 10 * far);
+  BOOST_TEST(AC::make_square_background(AC::Uniform_metric(), 100, 2000).number_of_vertices() >= 2000u);
+  BOOST_TEST(contains(invalid_input_message([] { AC::make_square_background(AC::Uniform_metric(), 3); }), "at least 4 output vertices"));
+  BOOST_TEST(contains(invalid_input_message([] {
+                        AC::make_square_background(AC::make_analytic_metric_2([](double, double) {
+                                                     return Eigen::Matrix2d(Eigen::Matrix2d::Identity() * std::nan(""));
+                                                   }),
+                                                   100);
+                      }),
+                      "not finite and positive definite"));
+}
+

@@ -5,8 +5,9 @@
 // (z = 0.3 (x^2 - y^2) over [-1, 1]^2) with a constant anisotropic metric, edges 3 times shorter along x.
 // Usage: remesh_Surface_mesh [number_of_vertices] [output.off]
 
+#include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
-#include <Aniso_conformal/remesh.h>
+#include <Aniso_conformal/remesh_in_domain.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -40,8 +41,10 @@ int main(int argc, char** argv)
   // one tensor per vertex, indexed like the vertices: M = diag(9, 1, 1) (3 times shorter edges along x)
   std::vector<Eigen::Matrix3d> tensors(num_vertices(patch), Eigen::Vector3d(9, 1, 1).asDiagonal());
   try {
-    const AC::Remeshing_result r = AC::remesh(patch, AC::Tensor_field_metric(tensors), out,
-                                              AC::parameters::number_of_vertices(n).random_seed(1u));
+    // the patch is a disk, which remesh() would send to the plane: remesh_in_domain<Planar_domain>
+    // is that same pipeline and compiles the plane only (remesh() compiles all four domains)
+    const AC::Remeshing_result r = AC::remesh_in_domain<AC::Planar_domain>(patch, AC::Tensor_field_metric(tensors), out,
+                                                                           AC::parameters::number_of_vertices(n).random_seed(1u));
     std::cout << num_vertices(out) << " vertices, " << r.corners << " corners kept; in the metric G_avg "
               << r.quality.G_avg << ", theta_min " << r.quality.theta_min << " degrees\n";
   } catch(const AC::Error& e) {
