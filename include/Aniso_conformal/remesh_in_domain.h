@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +39,30 @@
 namespace Aniso_conformal {
 
 namespace internal {
+
+// `true` if the holes' patches need a fixed site at each apex: on the sphere when the patches cover half of
+// it or more (their chordal triangles' area against all of them), as the sites of the rest could then lie
+// in one hemisphere, where their Delaunay triangulation does not cover the sphere; never in the other
+// domains (see run_pipeline_once())
+template <typename Domain>
+bool patches_need_apex_sites(const Intrinsic_triangulation& itri, const typename Domain::Embedding& emb)
+{
+  if constexpr(Domain::kind == Parametric_domain::SPHERE) {
+    double patch = 0, all = 0;
+    for(std::size_t f = 0; f < itri.number_of_faces(); ++f) {
+      const auto& c = itri.face_vertices(f);
+      const Eigen::Vector3d &a = emb.position[std::size_t(c[0])], &b = emb.position[std::size_t(c[1])], &d = emb.position[std::size_t(c[2])];
+      const double area = 0.5 * (b - a).cross(d - a).norm();
+      all += area;
+      if(itri.is_patch_face(f)) patch += area;
+    }
+    return !(patch < 0.5 * all);
+  } else {
+    (void)itri;
+    (void)emb;
+    return false;
+  }
+}
 
 // The pipeline in `Domain`, with the caller's parameters read into values and its visitor behind a
 // handle (canonical_parameters.h): compiled once per domain and metric. With `follow_creases` the
@@ -90,9 +115,20 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
   const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
   // the sites (in a closed domain the input's corners first, fixed), the CVT and the dual, with any traits
-  // with patches, one more fixed site at each patch's apex (removed from the output): no hole's patch is
-  // left without a site, which the sphere's dual needs (its sites must not all lie in one hemisphere)
-  const std::size_t apexes = patches ? patches->loops.size() : 0;
+  // with patches on the sphere, when they cover half of it or more, one more fixed site at a patch's
+  // apex (removed from the output), at each apex that sees every edge of its loop's chain of sites under
+  // 60 degrees at most: no large patch is left without a site, which the sphere's dual needs (its sites
+  // must not all lie in one hemisphere). Elsewhere no site in a patch. An apex site close to its loop's
+  // chords (a small hole, 3 or 4 loop sites around it: the apex sees a loop edge under about 120 or 90
+  // degrees) made the edge between two consecutive loop sites a Delaunay edge only if the free site
+  // facing it saw it under at most 60 or 90 degrees, which the CVT's free sites next to the loop do not
+  // keep (torus_with_hole.off failed at 100 to 1000 vertices). With only loop sites on the patch side
+  // (or an apex seeing the edge under 60 degrees at most), a loop edge is in the dual whenever the free
+  // site facing it lies outside the circle through it and the loop site facing it across the patch (the
+  // loop's own circle for a round hole), as at a boundary of the plane. `apexes` is set with the loops'
+  // sites below.
+  const bool apex_sites_needed = patches && patches_need_apex_sites<Domain>(itri, emb);
+  std::size_t apexes = 0;
   auto cvt_and_dual = [&](auto& traits) {
     auto sites = traits.initial_sites(n + apexes, options.random_seed);
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
@@ -144,11 +180,23 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
           for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
         }
         first.push_back(fixed.size());
-        for(std::size_t l = 0; l < apexes; ++l) fixed.push_back(seam_site<Domain>(emb, itri, int(patches->apex[l])));
+        if constexpr(Domain::kind == Parametric_domain::SPHERE)
+          if(apex_sites_needed)
+            for(std::size_t l = 0; l < patches->loops.size(); ++l) {
+              auto apex = seam_site<Domain>(emb, itri, int(patches->apex[l]));
+              const std::size_t k = loops.vertices[l].size();
+              bool narrow = true;
+              for(std::size_t j = 0; j < k && narrow; ++j) {
+                const Eigen::Vector3d u = fixed[first[l] + j].site - apex.site, v = fixed[first[l] + (j + 1) % k].site - apex.site;
+                narrow = std::atan2(u.cross(v).norm(), u.dot(v)) <= 3.14159265358979323846 / 3;
+              }
+              if(narrow) fixed.push_back(apex);
+            }
+        apexes = fixed.size() - first.back();
       }
       Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
       Remeshed_surface dual = cvt_and_dual(traits);
-      if(patches) remove_patch_triangles(dual, loops, first, surface.number_of_vertices());
+      if(patches) remove_patch_triangles(dual, loops, first, apexes, surface.number_of_vertices());
       if(creases) {
         const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
         result.crease_sites = crease_sites.size();

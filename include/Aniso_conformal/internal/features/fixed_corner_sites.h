@@ -160,7 +160,7 @@ public:
     }
     return sites;
   }
-  // all the sites given (the corners, then the crease sites, the holes' loop sites and patch apexes)
+  // all the sites given (the corners, then the crease sites, the holes' loop sites and any patch apexes)
   std::size_t number_of_fixed_sites() const { return m_corners.size(); }
   // a corner's site is exactly its background corner; the other sites are located by the traits
   bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const

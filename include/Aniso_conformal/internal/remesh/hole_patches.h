@@ -394,13 +394,13 @@ inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Ho
 
 // Removes from `out` the dual triangles on the patch side of every loop's chain of sites (`first[l]`,
 // the index of loop l's first site among the sites, its sites following in order; `first.back()` the
-// first of the patches' apex sites, one a loop, removed too), and checks what is left: consecutive sites
-// of a loop joined by an output edge, no other site inside a patch, every surface point on the input's
-// own vertices. Throws Convergence_failure otherwise.
+// first of the `apexes` apex sites, one a loop or none (run_pipeline_once()), removed too), and checks
+// what is left: consecutive sites of a loop joined by an output edge, no other site inside a patch,
+// every surface point on the input's own vertices. Throws Convergence_failure otherwise.
 inline void remove_patch_triangles(Remeshed_surface& out, const Loop_sites& loops, const std::vector<std::size_t>& first,
-                                   std::size_t input_vertices)
+                                   std::size_t apexes, std::size_t input_vertices)
 {
-  const std::size_t apex_first = first.back(), apex_end = apex_first + loops.vertices.size();
+  const std::size_t apex_first = first.back(), apex_end = apex_first + apexes;
   const std::size_t nf = out.faces.size();
   std::map<std::pair<std::size_t, std::size_t>, std::size_t> face_of;  // directed edge -> face
   for(std::size_t f = 0; f < nf; ++f)
