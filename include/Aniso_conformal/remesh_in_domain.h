@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,23 +40,36 @@ namespace Aniso_conformal {
 
 namespace internal {
 
-// The pipeline in `Domain`, with the caller's parameters read into values and its visitor behind a
-// handle (canonical_parameters.h): compiled once per domain and metric. With `follow_creases` the
-// creases of a closed domain are followed (crease_sites.h); `creases_tried` says whether they were.
+// What run_pipeline() computes once, whether the creases are then followed or not: the request checked,
+// the input's feature graph, the holes' patches (a surface with boundary loops in a closed domain), and
+// the background after stage 1 and the refinement of stage 2, before its creases are refined.
+struct Pipeline_start {
+  std::unique_ptr<const Hole_patches> patches;  // none in the plane or for a disk on the sphere
+  Feature_graph features;
+  std::optional<Intrinsic_triangulation> itri;  // metric_and_background()
+  Remeshing_result result;                      // the figures so far
+  double edge_lengths_seconds = 0;              // stage 2's seconds so far
+  const Input_surface& background(const Input_surface& surface) const { return patches ? patches->closed : surface; }
+};
+
+// The checks of the request, the feature graph, the patches, stage 1 and the refinement of stage 2 in
+// `Domain` (the caller's parameters read into values and its visitor behind a handle,
+// canonical_parameters.h: compiled once per domain and metric). `result` is cleared once the request is
+// checked, and filled as the steps go (a failure leaves the figures so far); `start.result` is a copy.
 template <typename Domain, typename AnisotropicMetric>
-Remeshed_surface run_pipeline_once(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
-                                   const Remeshing_options& options, Visitor_handle& vis, bool follow_creases, bool& creases_tried)
+Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                              const Remeshing_options& options, Visitor_handle& vis)
 {
   const auto np = canonical_parameters(options, vis);
   const std::size_t n = options.number_of_vertices;
   if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
   if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
   constexpr bool closed = Domain::kind != Parametric_domain::PLANE;  // the closed domains keep the corners
+  Pipeline_start start;
   // a surface with boundary loops in a closed domain: its holes closed by patches (issue 15, item 3)
-  std::unique_ptr<const Hole_patches> patches;
   if(closed && !surface.boundary_loops().empty() && !(Domain::kind == Parametric_domain::SPHERE && surface.is_disk()))
-    patches.reset(new Hole_patches(close_holes(surface)));
-  const Input_surface& background = patches ? patches->closed : surface;
+    start.patches.reset(new Hole_patches(close_holes(surface)));
+  const Input_surface& background = start.background(surface);
   if(!Domain::fits(background))
     throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
                         surface.topology_description() + " (the " + domain_name(Domain::kind) + " domain takes " +
@@ -65,23 +79,112 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
   result.domain = Domain::kind;
   result.input_vertices = surface.number_of_vertices();
   result.input_faces = surface.number_of_faces();
-  // the input's sharp features (issue 15): measured on the output below, their time counted as the metric's
+  // the input's sharp features (issue 15): measured on the output, their time counted as the metric's
   const auto features_start = std::chrono::steady_clock::now();
-  const Feature_graph features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges,
-                                                   options.feature_vertices);
+  start.features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
   const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
-  if(closed) check_vertices_for_corners(features.corners.size(), n, options.feature_angle);
-
-  // 1. metric, 2. edge lengths
-  double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
-  // in a closed domain the creases are kept as chains of output edges (issue 15, item 2): their background
-  // pieces refined here, fixed sites along them below
-  const Feature_graph* creases = follow_creases && closed && !features.curves.empty() ? &features : nullptr;
-  creases_tried = creases != nullptr;
-  Intrinsic_triangulation itri = patches ? metric_and_edge_lengths(background, Patched_metric<AnisotropicMetric>(metric, *patches), n, np,
-                                                                   vis, result, patches.get(), &surface, &loop_edge_length, creases)
-                                         : metric_and_edge_lengths(surface, metric, n, np, vis, result, nullptr, nullptr, nullptr, creases);
+  if(closed) check_vertices_for_corners(start.features.corners.size(), n, options.feature_angle);
+  // 1. metric, 2. edge lengths (begun)
+  if(start.patches)
+    start.itri.emplace(metric_and_background(background, Patched_metric<AnisotropicMetric>(metric, *start.patches), n, np, vis, result,
+                                             start.edge_lengths_seconds, start.patches.get(), &surface));
+  else
+    start.itri.emplace(metric_and_background(surface, metric, n, np, vis, result, start.edge_lengths_seconds));
   result.seconds[int(Stage::METRIC)] += features_seconds;
+  start.result = result;
+  return start;
+}
+
+// In a closed domain, the sites (the input's corners first, fixed; the crease sites with `creases`; with
+// `patches` the loops' sites and one more fixed site at each patch's apex, removed from the output: no
+// hole's patch is left without a site, which the sphere's dual needs, its sites must not all lie in one
+// hemisphere), then `cvt_and_dual(traits)`, the patches' triangles removed and the crease edges
+// recovered (crease_sites.h).
+template <typename Domain, typename CvtAndDual>
+Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline_start& start, const Intrinsic_triangulation& itri,
+                                    const typename Domain::Embedding& emb, double loop_edge_length, const Feature_graph* creases,
+                                    const Remeshing_options& options, Remeshing_result& result, CvtAndDual& cvt_and_dual)
+{
+  const std::size_t n = options.number_of_vertices;
+  const Feature_graph& features = start.features;
+  const Hole_patches* patches = start.patches.get();
+  const std::size_t apexes = patches ? patches->loops.size() : 0;
+  std::vector<std::size_t> corners = corners_to_fix(features, itri, result.refinement.output_edge_length);
+  if(patches)  // the loops' corners are placed with their sites
+    corners.erase(std::remove_if(corners.begin(), corners.end(), [&](std::size_t v) { return itri.seam(int(v)) >= 0; }), corners.end());
+  auto fixed = corner_sites<Domain>(emb, itri, corners);
+  // the crease sites after the corners, at equal metric arc length along each curve (crease_sites.h)
+  Crease_sites crease_sites;
+  std::vector<std::vector<std::size_t>> crease_chain;  // per curve, its sites as output vertices, with its fixed corners
+  std::vector<char> crease_closed;
+  if(creases) {
+    const double h = patches ? loop_edge_length : result.refinement.output_edge_length;
+    std::vector<char> taken(itri.number_of_vertices(), 0);
+    std::vector<std::size_t> corner_index(itri.number_of_vertices(), std::size_t(-1));
+    for(std::size_t j = 0; j < corners.size(); ++j) {
+      taken[corners[j]] = 1;
+      corner_index[corners[j]] = j;
+    }
+    crease_sites = place_crease_sites(itri, features, crease_chains(itri, surface, features), h, std::move(taken),
+                                      n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), corners);
+    for(std::size_t c = 0; c < features.curves.size(); ++c) {
+      const Feature_curve& curve = features.curves[c];
+      std::vector<std::size_t> chain;
+      if(!curve.closed && corner_index[curve.vertices.front()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.front()]);
+      for(int v : crease_sites.vertices[c]) {
+        chain.push_back(fixed.size());
+        fixed.push_back(seam_site<Domain>(emb, itri, v));
+      }
+      if(!curve.closed && corner_index[curve.vertices.back()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.back()]);
+      crease_chain.push_back(std::move(chain));
+      crease_closed.push_back(curve.closed ? 1 : 0);
+    }
+  }
+  Loop_sites loops;
+  std::vector<std::size_t> first;
+  if(patches) {
+    loops = place_loop_sites(itri, *patches, loop_edge_length, options.corner_angle,
+                             n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)));
+    for(const auto& l : loops.vertices) {
+      first.push_back(fixed.size());
+      for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
+    }
+    first.push_back(fixed.size());
+    for(std::size_t l = 0; l < apexes; ++l) fixed.push_back(seam_site<Domain>(emb, itri, int(patches->apex[l])));
+  }
+  Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
+  Remeshed_surface dual = cvt_and_dual(traits);
+  if(patches) remove_patch_triangles(dual, loops, first, surface.number_of_vertices());
+  if(creases) {
+    const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
+    result.crease_sites = crease_sites.size();
+    result.crease_edges_recovered = joined.first;
+    result.crease_edges_missing = joined.second;
+  }
+  result.boundary_sites = loops.size();  // the crease corners are not boundary
+  return dual;
+}
+
+// The pipeline from `start` (start_pipeline()) on its background `itri`: the rest of stage 2 (with
+// `follow_creases` the creases of a closed domain refined, crease_sites.h), the conformal embedding, the
+// weighted CVT and the dual in `Domain`, the surface optimisation, the quality and the checks. `result`
+// starts as `start.result`.
+template <typename Domain, typename AnisotropicMetric>
+Remeshed_surface finish_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, const Pipeline_start& start,
+                                 Intrinsic_triangulation itri, Remeshing_result& result, const Remeshing_options& options,
+                                 Visitor_handle& vis, bool follow_creases)
+{
+  const auto np = canonical_parameters(options, vis);
+  const std::size_t n = options.number_of_vertices;
+  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;
+  result = start.result;
+  const Hole_patches* patches = start.patches.get();
+  // in a closed domain the creases are kept as chains of output edges (issue 15, item 2): their background
+  // pieces refined here, fixed sites along them in closed_domain_dual()
+  const Feature_graph* creases = follow_creases && closed && !start.features.curves.empty() ? &start.features : nullptr;
+  double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
+  finish_edge_lengths(itri, start.background(surface), n, np, vis, result, start.edge_lengths_seconds, patches,
+                      patches ? &surface : nullptr, patches ? &loop_edge_length : nullptr, creases);
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Stage_timer t3(vis, Stage::EMBEDDING);
@@ -89,9 +192,6 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
   record_embedding(emb, result);
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
   const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
-  // the sites (in a closed domain the input's corners first, fixed), the CVT and the dual, with any traits
-  // with patches, one more fixed site at each patch's apex (removed from the output): no hole's patch is
-  // left without a site, which the sphere's dual needs (its sites must not all lie in one hemisphere)
   const std::size_t apexes = patches ? patches->loops.size() : 0;
   auto cvt_and_dual = [&](auto& traits) {
     auto sites = traits.initial_sites(n + apexes, options.random_seed);
@@ -102,61 +202,8 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
     return dual;
   };
   Remeshed_surface out = [&] {
-    if constexpr(Domain::kind != Parametric_domain::PLANE) {
-      std::vector<std::size_t> corners = corners_to_fix(features, itri, result.refinement.output_edge_length);
-      if(patches)  // the loops' corners are placed with their sites
-        corners.erase(std::remove_if(corners.begin(), corners.end(), [&](std::size_t v) { return itri.seam(int(v)) >= 0; }), corners.end());
-      auto fixed = corner_sites<Domain>(emb, itri, corners);
-      // the crease sites after the corners, at equal metric arc length along each curve (crease_sites.h)
-      Crease_sites crease_sites;
-      std::vector<std::vector<std::size_t>> crease_chain;  // per curve, its sites as output vertices, with its fixed corners
-      std::vector<char> crease_closed;
-      if(creases) {
-        const double h = patches ? loop_edge_length : result.refinement.output_edge_length;
-        std::vector<char> taken(itri.number_of_vertices(), 0);
-        std::vector<std::size_t> corner_index(itri.number_of_vertices(), std::size_t(-1));
-        for(std::size_t j = 0; j < corners.size(); ++j) {
-          taken[corners[j]] = 1;
-          corner_index[corners[j]] = j;
-        }
-        crease_sites = place_crease_sites(itri, features, crease_chains(itri, surface, features), h, std::move(taken),
-                                          n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), corners);
-        for(std::size_t c = 0; c < features.curves.size(); ++c) {
-          const Feature_curve& curve = features.curves[c];
-          std::vector<std::size_t> chain;
-          if(!curve.closed && corner_index[curve.vertices.front()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.front()]);
-          for(int v : crease_sites.vertices[c]) {
-            chain.push_back(fixed.size());
-            fixed.push_back(seam_site<Domain>(emb, itri, v));
-          }
-          if(!curve.closed && corner_index[curve.vertices.back()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.back()]);
-          crease_chain.push_back(std::move(chain));
-          crease_closed.push_back(curve.closed ? 1 : 0);
-        }
-      }
-      Loop_sites loops;
-      std::vector<std::size_t> first;
-      if(patches) {
-        loops = place_loop_sites(itri, *patches, loop_edge_length, options.corner_angle,
-                                 n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)));
-        for(const auto& l : loops.vertices) {
-          first.push_back(fixed.size());
-          for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
-        }
-        first.push_back(fixed.size());
-        for(std::size_t l = 0; l < apexes; ++l) fixed.push_back(seam_site<Domain>(emb, itri, int(patches->apex[l])));
-      }
-      Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
-      Remeshed_surface dual = cvt_and_dual(traits);
-      if(patches) remove_patch_triangles(dual, loops, first, surface.number_of_vertices());
-      if(creases) {
-        const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
-        result.crease_sites = crease_sites.size();
-        result.crease_edges_recovered = joined.first;
-        result.crease_edges_missing = joined.second;
-      }
-      result.boundary_sites = loops.size();  // the crease corners are not boundary
-      return dual;
+    if constexpr(closed) {
+      return closed_domain_dual<Domain>(surface, start, itri, emb, loop_edge_length, creases, options, result, cvt_and_dual);
     } else {
       typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);
       return cvt_and_dual(traits);
@@ -169,28 +216,32 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
   // 6. quality in the metric, orientation against the input, topology and distance to the input
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);
   const auto measure_start = std::chrono::steady_clock::now();
-  result.features = measure_features(surface, features, out.points, out.faces);
+  result.features = measure_features(surface, start.features, out.points, out.faces);
   result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   return out;
 }
 
-// The pipeline, following the creases in a closed domain; if that run fails (Remeshing_failure: the
-// crease pieces split in the background can make a thin or sharply folded input's embedding fail, as on
-// test/data/cases/pillow_005.off at 150 vertices), the run without them, as before issue 15 item 2, whose
-// result (or failure) stands, with the first run's reason in Remeshing_result::creases_not_followed.
+// The pipeline, following the creases in a closed domain; if that run fails after the creases were
+// refined (Remeshing_failure: the crease pieces split in the background can make a thin or sharply folded
+// input's embedding fail, as on test/data/cases/pillow_005.off at 150 vertices), the run without them, as
+// before issue 15 item 2, from the background kept before the crease refinement (start_pipeline(), not
+// recomputed), whose result (or failure) stands, with the first run's reason in
+// Remeshing_result::creases_not_followed. A failure before the crease refinement is not retried.
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                               const Remeshing_options& options, Visitor_handle& vis)
 {
-  bool tried = false;
+  Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
+  const bool creases = Domain::kind != Parametric_domain::PLANE && !start.features.curves.empty();
+  if(!creases) return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false);
   std::string reason;
   try {
-    return run_pipeline_once<Domain>(surface, metric, result, options, vis, true, tried);
+    return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true);
   } catch(const Remeshing_failure& e) {
-    if(!tried) throw;
     reason = e.what();
   }
-  Remeshed_surface out = run_pipeline_once<Domain>(surface, metric, result, options, vis, false, tried);
+  vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
+  Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false);
   result.creases_not_followed = reason;
   return out;
 }
