@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -165,6 +166,97 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   return dual;
 }
 
+// In the plane with the creases followed (issue 15, item 2), the same steps as closed_domain_dual() around
+// the boundary's own sites: the `corners` (corners_to_fix()) on the boundary are corners of the boundary
+// (marked before the embedding, so its 1D CVT has a site exactly there and a crease ending there ends at
+// that site; a crease is never a boundary edge, detect_features()), the others are fixed sites inside,
+// followed by the crease sites (place_crease_sites()), after the boundary's sites
+// (Traits_with_interior_fixed_sites); then `cvt_and_dual(traits)` and the crease edges recovered. No crease
+// site is placed within half an output edge (in the metric at the site) of the boundary: the polygon of the
+// boundary sites bounds the dual, and a fixed site near it would make a sliver or fall outside.
+template <typename Domain, typename CvtAndDual>
+Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Feature_graph& features, const Intrinsic_triangulation& itri,
+                                          const typename Domain::Embedding& emb, const std::vector<std::size_t>& corners,
+                                          const Remeshing_options& options, Remeshing_result& result, CvtAndDual& cvt_and_dual)
+{
+  const std::size_t n = options.number_of_vertices, nv = itri.number_of_vertices();
+  const double h = result.refinement.output_edge_length;
+  std::vector<std::size_t> inner;  // the corners inside, as fixed sites
+  std::vector<std::size_t> site_of(nv, std::size_t(-1));  // background vertex -> index among the fixed sites inside
+  for(std::size_t v : corners)
+    if(!itri.is_boundary_vertex(int(v))) {
+      site_of[v] = inner.size();
+      inner.push_back(v);
+    }
+  auto fixed = corner_sites<Domain>(emb, itri, inner);
+  std::vector<char> taken(nv, 0);
+  for(std::size_t v : corners) taken[v] = 1;
+  // the boundary's metric length, and the chain vertices too near it
+  double perimeter = 0;
+  std::vector<std::pair<int, int>> boundary;
+  for(int e = 0; e < int(itri.number_of_halfedges()); ++e)
+    if(itri.is_boundary_edge(e)) {
+      boundary.emplace_back(itri.tail(e), itri.head(e));
+      perimeter += itri.length(e);
+    }
+  const auto chains = crease_chains(itri, surface, features);
+  for(const auto& ch : chains)
+    for(const auto& tv : ch) {
+      const int v = tv.second;
+      if(taken[std::size_t(v)]) continue;
+      if(itri.is_boundary_vertex(v)) {
+        taken[std::size_t(v)] = 1;
+        continue;
+      }
+      const Eigen::Vector3d& p = itri.position(v);
+      for(const auto& ab : boundary) {
+        const Eigen::Vector3d a = itri.position(ab.first), d = itri.position(ab.second) - a;
+        const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+        if((itri.Q(v) * (a + t * d - p)).norm() < 0.5 * h) {
+          taken[std::size_t(v)] = 1;
+          break;
+        }
+      }
+    }
+  const std::size_t boundary_sites = std::size_t(std::ceil(perimeter / h));  // about as many as the boundary gets
+  const Crease_sites crease_sites =
+      place_crease_sites(itri, features, chains, h, std::move(taken),
+                         n - std::min(n, fixed.size() + boundary_sites + std::max<std::size_t>(4, n / 4)), corners);
+  for(std::size_t c = 0; c < features.curves.size(); ++c)
+    for(int v : crease_sites.vertices[c]) {
+      site_of[std::size_t(v)] = fixed.size();
+      fixed.push_back(seam_site<Domain>(emb, itri, v));
+    }
+  Traits_with_interior_fixed_sites<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
+  Remeshed_surface dual = cvt_and_dual(traits);
+  // per curve its sites as output vertices (site i is output vertex i), its corners at the ends
+  const std::size_t nb = traits.number_of_boundary_sites();
+  std::vector<std::size_t> boundary_site(nv, std::size_t(-1));
+  for(std::size_t i = 0; i < nb; ++i) {
+    const int w = traits.boundary_site_vertex(i);
+    if(w >= 0 && std::size_t(w) < nv) boundary_site[std::size_t(w)] = i;
+  }
+  auto output_vertex = [&](std::size_t v) { return site_of[v] != std::size_t(-1) ? nb + site_of[v] : boundary_site[v]; };
+  std::vector<std::vector<std::size_t>> crease_chain;
+  std::vector<char> crease_closed;
+  for(std::size_t c = 0; c < features.curves.size(); ++c) {
+    const Feature_curve& curve = features.curves[c];
+    std::vector<std::size_t> chain;
+    const std::size_t front = output_vertex(curve.vertices.front()), back = output_vertex(curve.vertices.back());
+    if(!curve.closed && front != std::size_t(-1)) chain.push_back(front);
+    for(int v : crease_sites.vertices[c]) chain.push_back(output_vertex(std::size_t(v)));
+    if(!curve.closed && back != std::size_t(-1)) chain.push_back(back);
+    crease_chain.push_back(std::move(chain));
+    crease_closed.push_back(curve.closed ? 1 : 0);
+  }
+  const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
+  result.crease_sites = crease_sites.size();
+  result.crease_edges_recovered = joined.first;
+  result.crease_edges_missing = joined.second;
+  result.boundary_sites = nb;  // the interior fixed sites are not boundary
+  return dual;
+}
+
 // The pipeline from `start` (start_pipeline()) on its background `itri`: the rest of stage 2 (with
 // `follow_creases` the creases of a closed domain refined, crease_sites.h), the conformal embedding, the
 // weighted CVT and the dual in `Domain`, the surface optimisation, the quality and the checks. `result`
@@ -179,12 +271,20 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   constexpr bool closed = Domain::kind != Parametric_domain::PLANE;
   result = start.result;
   const Hole_patches* patches = start.patches.get();
-  // in a closed domain the creases are kept as chains of output edges (issue 15, item 2): their background
-  // pieces refined here, fixed sites along them in closed_domain_dual()
-  const Feature_graph* creases = follow_creases && closed && !start.features.curves.empty() ? &start.features : nullptr;
+  // the creases are kept as chains of output edges (issue 15, item 2): their background pieces refined
+  // here, fixed sites along them in closed_domain_dual() or planar_dual_with_creases()
+  const Feature_graph* creases = follow_creases && !start.features.curves.empty() ? &start.features : nullptr;
   double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
   finish_edge_lengths(itri, start.background(surface), n, np, vis, result, start.edge_lengths_seconds, patches,
                       patches ? &surface : nullptr, patches ? &loop_edge_length : nullptr, creases);
+  // in the plane, the corners kept with the creases; those on the boundary become the boundary's corners
+  // (its 1D CVT keeps them; the embedding keeps their turning angle)
+  std::vector<std::size_t> plane_corners;
+  if(!closed && creases) {
+    plane_corners = corners_to_fix(start.features, itri, result.refinement.output_edge_length);
+    for(std::size_t v : plane_corners)
+      if(itri.is_boundary_vertex(int(v))) itri.set_corner(int(v), true);
+  }
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Stage_timer t3(vis, Stage::EMBEDDING);
@@ -205,6 +305,7 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
     if constexpr(closed) {
       return closed_domain_dual<Domain>(surface, start, itri, emb, loop_edge_length, creases, options, result, cvt_and_dual);
     } else {
+      if(creases) return planar_dual_with_creases<Domain>(surface, start.features, itri, emb, plane_corners, options, result, cvt_and_dual);
       typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);
       return cvt_and_dual(traits);
     }
@@ -221,7 +322,7 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   return out;
 }
 
-// The pipeline, following the creases in a closed domain; if that run fails after the creases were
+// The pipeline, following the creases; if that run fails after the creases were
 // refined (Remeshing_failure: the crease pieces split in the background can make a thin or sharply folded
 // input's embedding fail, as on test/data/cases/pillow_005.off at 150 vertices), the run without them, as
 // before issue 15 item 2, from the background kept before the crease refinement (start_pipeline(), not
@@ -232,7 +333,7 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
                               const Remeshing_options& options, Visitor_handle& vis)
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
-  const bool creases = Domain::kind != Parametric_domain::PLANE && !start.features.curves.empty();
+  const bool creases = !start.features.curves.empty();
   if(!creases) return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false);
   std::string reason;
   try {
