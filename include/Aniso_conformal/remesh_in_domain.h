@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -166,8 +167,54 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   return dual;
 }
 
+// The distance in the metric (at `v`: its square root Q(v)) from background vertex `v` to the boundary of
+// the disk `itri` (its boundary edges, straight in space); infinite without a boundary. O(boundary edges).
+inline double metric_distance_to_boundary(const Intrinsic_triangulation& itri, int v)
+{
+  const Eigen::Vector3d& p = itri.position(v);
+  double d = std::numeric_limits<double>::infinity();
+  for(int e = 0; e < int(itri.number_of_halfedges()); ++e) {
+    if(!itri.is_boundary_edge(e)) continue;
+    const Eigen::Vector3d a = itri.position(itri.tail(e)), ab = itri.position(itri.head(e)) - a;
+    const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    d = std::min(d, (itri.Q(v) * (a + t * ab - p)).norm());
+  }
+  return d;
+}
+
+// The corners the plane keeps with its creases (corners_to_fix() with output edge length `h`), those on
+// the boundary marked as corners of the boundary (its 1D CVT then has a site exactly there; the embedding
+// keeps their turning angle): not a boundary vertex within half of `h` (in the metric) of a corner of the
+// boundary already, nor an interior one within half of `h` of the boundary, whose fixed site would make a
+// sliver with the boundary's sites (CGAL's cylinder_locally_refined at 2000 vertices: theta_min 1.3
+// degrees with them, 36.9 without creases followed).
+inline std::vector<std::size_t> plane_corners_to_fix(const Feature_graph& g, Intrinsic_triangulation& itri, double h)
+{
+  std::vector<int> boundary_corners;
+  for(int v = 0; v < int(itri.number_of_vertices()); ++v)
+    if(itri.is_corner(v)) boundary_corners.push_back(v);
+  std::vector<std::size_t> kept;
+  for(std::size_t v : corners_to_fix(g, itri, h)) {
+    const int w = int(v);
+    if(!itri.is_boundary_vertex(w)) {
+      if(metric_distance_to_boundary(itri, w) >= 0.5 * h) kept.push_back(v);
+      continue;
+    }
+    bool apart = true;
+    for(int c : boundary_corners)
+      if(c != w && (0.5 * (itri.Q(w) + itri.Q(c)) * (itri.position(c) - itri.position(w))).norm() < 0.5 * h) apart = false;
+    if(!apart) continue;
+    kept.push_back(v);
+    if(!itri.is_corner(w)) {
+      itri.set_corner(w, true);
+      boundary_corners.push_back(w);
+    }
+  }
+  return kept;
+}
+
 // In the plane with the creases followed (issue 15, item 2), the same steps as closed_domain_dual() around
-// the boundary's own sites: the `corners` (corners_to_fix()) on the boundary are corners of the boundary
+// the boundary's own sites: the `corners` (plane_corners_to_fix()) on the boundary are corners of the boundary
 // (marked before the embedding, so its 1D CVT has a site exactly there and a crease ending there ends at
 // that site; a crease is never a boundary edge, detect_features()), the others are fixed sites inside,
 // followed by the crease sites (place_crease_sites()), after the boundary's sites
@@ -193,30 +240,14 @@ Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Fe
   for(std::size_t v : corners) taken[v] = 1;
   // the boundary's metric length, and the chain vertices too near it
   double perimeter = 0;
-  std::vector<std::pair<int, int>> boundary;
   for(int e = 0; e < int(itri.number_of_halfedges()); ++e)
-    if(itri.is_boundary_edge(e)) {
-      boundary.emplace_back(itri.tail(e), itri.head(e));
-      perimeter += itri.length(e);
-    }
+    if(itri.is_boundary_edge(e)) perimeter += itri.length(e);
   const auto chains = crease_chains(itri, surface, features);
   for(const auto& ch : chains)
     for(const auto& tv : ch) {
       const int v = tv.second;
-      if(taken[std::size_t(v)]) continue;
-      if(itri.is_boundary_vertex(v)) {
+      if(!taken[std::size_t(v)] && (itri.is_boundary_vertex(v) || metric_distance_to_boundary(itri, v) < 0.5 * h))
         taken[std::size_t(v)] = 1;
-        continue;
-      }
-      const Eigen::Vector3d& p = itri.position(v);
-      for(const auto& ab : boundary) {
-        const Eigen::Vector3d a = itri.position(ab.first), d = itri.position(ab.second) - a;
-        const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-        if((itri.Q(v) * (a + t * d - p)).norm() < 0.5 * h) {
-          taken[std::size_t(v)] = 1;
-          break;
-        }
-      }
     }
   const std::size_t boundary_sites = std::size_t(std::ceil(perimeter / h));  // about as many as the boundary gets
   const Crease_sites crease_sites =
@@ -278,13 +309,8 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   finish_edge_lengths(itri, start.background(surface), n, np, vis, result, start.edge_lengths_seconds, patches,
                       patches ? &surface : nullptr, patches ? &loop_edge_length : nullptr, creases);
   // in the plane, the corners kept with the creases; those on the boundary become the boundary's corners
-  // (its 1D CVT keeps them; the embedding keeps their turning angle)
   std::vector<std::size_t> plane_corners;
-  if(!closed && creases) {
-    plane_corners = corners_to_fix(start.features, itri, result.refinement.output_edge_length);
-    for(std::size_t v : plane_corners)
-      if(itri.is_boundary_vertex(int(v))) itri.set_corner(int(v), true);
-  }
+  if(!closed && creases) plane_corners = plane_corners_to_fix(start.features, itri, result.refinement.output_edge_length);
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Stage_timer t3(vis, Stage::EMBEDDING);

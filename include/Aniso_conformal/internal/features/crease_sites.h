@@ -28,8 +28,9 @@
 #include <utility>
 #include <vector>
 
-// The creases of the input (Feature_graph.h) as chains of output edges in the closed domains (issue 15,
-// item 2). The crease curves are kept the way the holes' loops are (hole_patches.h), without a patch:
+// The creases of the input (Feature_graph.h) as chains of output edges in every domain (issue 15, item
+// 2; the plane places its sites around its boundary's, remesh_in_domain.h planar_dual_with_creases()).
+// The crease curves are kept the way the holes' loops are (hole_patches.h), without a patch:
 // 1. the background's pieces of crease edges are split at their midpoints (points of the input crease)
 //    until none is longer than a third of the output edge length, before any flip (pipeline_steps.h);
 // 2. fixed sites are placed along each curve at about equal metric arc length, spacing the output edge
