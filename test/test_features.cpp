@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -578,4 +579,37 @@ BOOST_AUTO_TEST_CASE(without_features_the_plane_is_unchanged)
   BOOST_TEST(plain.points == out.points);
   BOOST_TEST(plain.faces == out.faces);
   BOOST_TEST(r2.features.covered_share < 0.5);  // rounded off, as before
+}
+
+namespace {
+// counts the stages started
+struct Stage_counter : AC::Default_visitor {
+  std::map<AC::Stage, int> started, finished;
+  void on_stage_started(AC::Stage s) { ++started[s]; }
+  void on_stage_finished(AC::Stage s, double) { ++finished[s]; }
+};
+} // namespace
+
+BOOST_AUTO_TEST_CASE(a_run_whose_creases_fail_is_retried_from_the_kept_background)
+{
+  // pillow_005.off at 150: following its rim (a crease) makes the spherical embedding fail, and the run
+  // without it stands; the retry starts after the background's refinement (kept, not recomputed): the
+  // metric stage runs once, stage 2 (its crease part and the adjustment) and the embedding twice, and the
+  // result is the run without creases bit for bit
+  const AC::Input_surface in = read_case("pillow_005.off");
+  Stage_counter counter;
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
+    in, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(150)).visitor(std::ref(counter)));
+  BOOST_TEST(!r.creases_not_followed.empty());
+  BOOST_TEST(r.crease_sites == 0u);
+  BOOST_TEST(counter.started[AC::Stage::METRIC] == 1);
+  BOOST_TEST(counter.started[AC::Stage::EDGE_LENGTHS] == 2);
+  BOOST_TEST(counter.finished[AC::Stage::EDGE_LENGTHS] == 2);
+  BOOST_TEST(counter.started[AC::Stage::EMBEDDING] == 2);
+  AC::Remeshing_result r180;
+  const AC::Remeshed_surface plain = AC::remesh_in_domain<AC::Spherical_domain>(
+    in, AC::Uniform_metric(), r180, AC::parameters::number_of_vertices(std::size_t(150)).feature_angle(180.0));
+  BOOST_TEST(plain.points == out.points);
+  BOOST_TEST(plain.faces == out.faces);
 }
