@@ -75,6 +75,9 @@ struct Planar_domain : internal::Domain_policy_base<Planar_embedding, Planar_dom
       d.summary += ", " + std::to_string(traits.number_of_added_boundary_sites()) + " boundary sites added";
     return d;
   }
+  /// the point of the domain of background vertex `v` (a corner of `face`): its layout position, the same in
+  /// every face around it (used for the fixed sites of the input's interior corners and creases)
+  static Traits::Point corner_site(const Embedding& emb, int /*face*/, int /*corner*/, int v) { return emb.uv[std::size_t(v)]; }
   /// what an inverted output triangle most likely means here
   static const char* inverted_triangles_hint() { return "the metric is too strong for this background near its boundary"; }
 };

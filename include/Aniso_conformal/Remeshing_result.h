@@ -66,8 +66,8 @@ struct Remeshing_result {
   /// `feature_edges` and `feature_vertices`) and how many
   /// of them the output keeps (`measure_features()`); all zero when the input has none
   Feature_report features;
-  /// fixed sites placed along the input's crease curves in a closed domain (issue 15, item 2; the curves'
-  /// corners not counted); 0 in the plane or without a crease
+  /// fixed sites placed along the input's crease curves (issue 15, item 2, every domain; the curves'
+  /// corners not counted); 0 without a crease
   std::size_t crease_sites = 0;
   /// pairs of consecutive crease sites (or corners) the dual did not join, joined by one output edge flip
   std::size_t crease_edges_recovered = 0;

@@ -28,11 +28,12 @@ struct Remeshed_surface {
   std::vector<Eigen::Vector3d> points;                 ///< vertex positions
   std::vector<std::array<std::size_t, 3>> faces;       ///< triangles, oriented like the input
   std::vector<Surface_point> surface_points;           ///< each vertex as a point of the input surface
-  /// the first `fixed_vertices` vertices are the fixed sites of the CVT (boundary sites of the plane, the
-  /// input's corners kept in a closed domain): later stages (`optimize_surface_mesh()`) never move them
+  /// the first `fixed_vertices` vertices are the fixed sites of the CVT (boundary sites of the plane, then
+  /// the input's corners kept inside it and the crease sites; in a closed domain the corners, crease sites
+  /// and loop sites): later stages (`optimize_surface_mesh()`) never move them
   std::size_t fixed_vertices = 0;
   /// output edges on the input's creases, as (smaller, larger) vertex index pairs, joining consecutive
-  /// crease sites (closed domains, issue 15 item 2): later stages (`optimize_surface_mesh()`) never flip them
+  /// crease sites (issue 15 item 2): later stages (`optimize_surface_mesh()`) never flip them
   std::vector<std::array<std::size_t, 2>> kept_edges;
 };
 

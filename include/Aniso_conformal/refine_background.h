@@ -71,6 +71,44 @@ inline double metric_area(const Intrinsic_triangulation& itri)
   return area;
 }
 
+// A queue of background edges (metric length, tail, head), longest first, as refine_seams() and
+// refine_creases() fill it with the pieces of a curve of the input (a hole's loop, a crease).
+typedef std::priority_queue<std::tuple<double, int, int>> Longest_edge_queue;
+
+// Splits the edges of `queue` longer than `longest` in the metric, longest first, each at its straight
+// midpoint, which lies on the input's edge the piece belongs to (the point is its own projection onto
+// `input`; its metric square root is the mean of its ends'); the two halves go back in the queue. An entry
+// no longer a background edge (split already, or flipped) or refused by `splittable(h)` (h its halfedge)
+// is dropped. The new edges' lengths are set (compute_metric_edge_lengths()). Shared by the holes' loops
+// (hole_patches.h) and the creases (crease_sites.h). Returns the number of splits.
+// \throws Remeshing_failure if `itri` would need more than `most` vertices ("remesh(): <what> need ...")
+template <typename Splittable>
+std::size_t split_longest_at_input_midpoints(Intrinsic_triangulation& itri, const Input_surface& input, Longest_edge_queue& queue,
+                                             double longest, std::size_t most, const Splittable& splittable, const std::string& what)
+{
+  auto length = [&](int a, int b) { return metric_segment_length(itri.position(a), itri.position(b), itri.Q(a), itri.Q(b)); };
+  std::size_t splits = 0;
+  while(!queue.empty() && std::get<0>(queue.top()) > longest) {
+    const std::tuple<double, int, int> top = queue.top();
+    queue.pop();
+    const int a = std::get<1>(top), b = std::get<2>(top);
+    int h = itri.find_halfedge(a, b);
+    if(h < 0) h = itri.find_halfedge(b, a);
+    if(h < 0 || !splittable(h)) continue;
+    if(itri.number_of_vertices() >= most)
+      throw Remeshing_failure("remesh(): " + what + " need more than " + std::to_string(most) + " background vertices to carry their sites");
+    const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
+    Surface_point sp = input.project(mid);
+    sp.position = mid;
+    const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
+    ++splits;
+    queue.emplace(length(a, m), a, m);
+    queue.emplace(length(m, b), m, b);
+  }
+  if(splits > 0) compute_metric_edge_lengths(itri);
+  return splits;
+}
+
 } // namespace internal
 
 /*!

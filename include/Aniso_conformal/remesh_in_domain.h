@@ -28,7 +28,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,10 +42,65 @@ namespace Aniso_conformal {
 
 namespace internal {
 
+// What run_pipeline() computes once, whether the creases are then followed or not: the request checked,
+// the input's feature graph, the holes' patches (a surface with boundary loops in a closed domain), and
+// the background after stage 1 and the refinement of stage 2, before its creases are refined.
+struct Pipeline_start {
+  std::unique_ptr<const Hole_patches> patches;  // none in the plane or for a disk on the sphere
+  Feature_graph features;
+  std::optional<Intrinsic_triangulation> itri;  // metric_and_background()
+  Remeshing_result result;                      // the figures so far
+  double edge_lengths_seconds = 0;              // stage 2's seconds so far
+  const Input_surface& background(const Input_surface& surface) const { return patches ? patches->closed : surface; }
+};
+
+// The checks of the request, the feature graph, the patches, stage 1 and the refinement of stage 2 in
+// `Domain` (the caller's parameters read into values and its visitor behind a handle,
+// canonical_parameters.h: compiled once per domain and metric). `result` is cleared once the request is
+// checked, and filled as the steps go (a failure leaves the figures so far); `start.result` is a copy.
+template <typename Domain, typename AnisotropicMetric>
+Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                              const Remeshing_options& options, Visitor_handle& vis)
+{
+  const auto np = canonical_parameters(options, vis);
+  const std::size_t n = options.number_of_vertices;
+  if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
+  if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
+  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;  // the closed domains keep the corners
+  Pipeline_start start;
+  // a surface with boundary loops in a closed domain: its holes closed by patches (issue 15, item 3)
+  if(closed && !surface.boundary_loops().empty() && !(Domain::kind == Parametric_domain::SPHERE && surface.is_disk()))
+    start.patches.reset(new Hole_patches(close_holes(surface)));
+  const Input_surface& background = start.background(surface);
+  if(!Domain::fits(background))
+    throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
+                        surface.topology_description() + " (the " + domain_name(Domain::kind) + " domain takes " +
+                        Domain::topology() + ")");
+  Domain::check_number_of_vertices(background, n);
+  result = Remeshing_result();
+  result.domain = Domain::kind;
+  result.input_vertices = surface.number_of_vertices();
+  result.input_faces = surface.number_of_faces();
+  // the input's sharp features (issue 15): measured on the output, their time counted as the metric's
+  const auto features_start = std::chrono::steady_clock::now();
+  start.features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
+  const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
+  if(closed) check_vertices_for_corners(start.features.corners.size(), n, options.feature_angle);
+  // 1. metric, 2. edge lengths (begun)
+  if(start.patches)
+    start.itri.emplace(metric_and_background(background, Patched_metric<AnisotropicMetric>(metric, *start.patches), n, np, vis, result,
+                                             start.edge_lengths_seconds, start.patches.get(), &surface));
+  else
+    start.itri.emplace(metric_and_background(surface, metric, n, np, vis, result, start.edge_lengths_seconds));
+  result.seconds[int(Stage::METRIC)] += features_seconds;
+  start.result = result;
+  return start;
+}
+
 // `true` if the holes' patches need a fixed site at each apex: on the sphere when the patches cover half of
 // it or more (their chordal triangles' area against all of them), as the sites of the rest could then lie
 // in one hemisphere, where their Delaunay triangulation does not cover the sphere; never in the other
-// domains (see run_pipeline_once())
+// domains (see closed_domain_dual())
 template <typename Domain>
 bool patches_need_apex_sites(const Intrinsic_triangulation& itri, const typename Domain::Embedding& emb)
 {
@@ -64,49 +121,242 @@ bool patches_need_apex_sites(const Intrinsic_triangulation& itri, const typename
   }
 }
 
-// The pipeline in `Domain`, with the caller's parameters read into values and its visitor behind a
-// handle (canonical_parameters.h): compiled once per domain and metric. With `follow_creases` the
-// creases of a closed domain are followed (crease_sites.h); `creases_tried` says whether they were.
+// In a closed domain, the sites (the input's corners first, fixed; the crease sites with `creases`; with
+// `patches` the loops' sites and, on the sphere when the patches cover half of it or more, one more fixed
+// site at a patch's apex (removed from the output), at each apex that sees every edge of its loop's chain
+// of sites under 60 degrees at most: no large patch is left without a site, which the sphere's dual needs
+// (its sites must not all lie in one hemisphere); elsewhere no site in a patch), then
+// `cvt_and_dual(traits)` (which reads `apexes`, the number of apex sites, set here), the patches'
+// triangles removed and the crease edges recovered (crease_sites.h).
+// An apex site close to its loop's chords (a small hole, 3 or 4 loop sites around it: the apex sees a
+// loop edge under about 120 or 90 degrees) made the edge between two consecutive loop sites a Delaunay
+// edge only if the free site facing it saw it under at most 60 or 90 degrees, which the CVT's free sites
+// next to the loop do not keep (torus_with_hole.off failed at 100 to 1000 vertices). With only loop sites
+// on the patch side (or an apex seeing the edge under 60 degrees at most), a loop edge is in the dual
+// whenever the free site facing it lies outside the circle through it and the loop site facing it across
+// the patch (the loop's own circle for a round hole), as at a boundary of the plane.
+template <typename Domain, typename CvtAndDual>
+Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline_start& start, const Intrinsic_triangulation& itri,
+                                    const typename Domain::Embedding& emb, double loop_edge_length, const Feature_graph* creases,
+                                    const Remeshing_options& options, Remeshing_result& result, std::size_t& apexes,
+                                    CvtAndDual& cvt_and_dual)
+{
+  const std::size_t n = options.number_of_vertices;
+  const Feature_graph& features = start.features;
+  const Hole_patches* patches = start.patches.get();
+  apexes = 0;
+  std::vector<std::size_t> corners = corners_to_fix(features, itri, result.refinement.output_edge_length);
+  if(patches)  // the loops' corners are placed with their sites
+    corners.erase(std::remove_if(corners.begin(), corners.end(), [&](std::size_t v) { return itri.seam(int(v)) >= 0; }), corners.end());
+  auto fixed = corner_sites<Domain>(emb, itri, corners);
+  // the crease sites after the corners, at equal metric arc length along each curve (crease_sites.h)
+  Crease_sites crease_sites;
+  std::vector<std::vector<std::size_t>> crease_chain;  // per curve, its sites as output vertices, with its fixed corners
+  std::vector<char> crease_closed;
+  if(creases) {
+    const double h = patches ? loop_edge_length : result.refinement.output_edge_length;
+    std::vector<char> taken(itri.number_of_vertices(), 0);
+    std::vector<std::size_t> corner_index(itri.number_of_vertices(), std::size_t(-1));
+    for(std::size_t j = 0; j < corners.size(); ++j) {
+      taken[corners[j]] = 1;
+      corner_index[corners[j]] = j;
+    }
+    crease_sites = place_crease_sites(itri, features, crease_chains(itri, surface, features), h, std::move(taken),
+                                      n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), corners);
+    for(std::size_t c = 0; c < features.curves.size(); ++c) {
+      const Feature_curve& curve = features.curves[c];
+      std::vector<std::size_t> chain;
+      if(!curve.closed && corner_index[curve.vertices.front()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.front()]);
+      for(int v : crease_sites.vertices[c]) {
+        chain.push_back(fixed.size());
+        fixed.push_back(seam_site<Domain>(emb, itri, v));
+      }
+      if(!curve.closed && corner_index[curve.vertices.back()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.back()]);
+      crease_chain.push_back(std::move(chain));
+      crease_closed.push_back(curve.closed ? 1 : 0);
+    }
+  }
+  Loop_sites loops;
+  std::vector<std::size_t> first;
+  if(patches) {
+    loops = place_loop_sites(itri, *patches, loop_edge_length, options.corner_angle,
+                             n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)));
+    for(const auto& l : loops.vertices) {
+      first.push_back(fixed.size());
+      for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
+    }
+    first.push_back(fixed.size());
+    if constexpr(Domain::kind == Parametric_domain::SPHERE)
+      if(patches_need_apex_sites<Domain>(itri, emb))
+        for(std::size_t l = 0; l < patches->loops.size(); ++l) {
+          auto apex = seam_site<Domain>(emb, itri, int(patches->apex[l]));
+          const std::size_t k = loops.vertices[l].size();
+          bool narrow = true;
+          for(std::size_t j = 0; j < k && narrow; ++j) {
+            const Eigen::Vector3d u = fixed[first[l] + j].site - apex.site, v = fixed[first[l] + (j + 1) % k].site - apex.site;
+            narrow = std::atan2(u.cross(v).norm(), u.dot(v)) <= 3.14159265358979323846 / 3;
+          }
+          if(narrow) fixed.push_back(apex);
+        }
+    apexes = fixed.size() - first.back();
+  }
+  Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
+  Remeshed_surface dual = cvt_and_dual(traits);
+  if(patches) remove_patch_triangles(dual, loops, first, apexes, surface.number_of_vertices());
+  if(creases) {
+    const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
+    result.crease_sites = crease_sites.size();
+    result.crease_edges_recovered = joined.first;
+    result.crease_edges_missing = joined.second;
+  }
+  result.boundary_sites = loops.size();  // the crease corners are not boundary
+  return dual;
+}
+
+// The distance in the metric (at `v`: its square root Q(v)) from background vertex `v` to the boundary of
+// the disk `itri` (its boundary edges, straight in space); infinite without a boundary. O(boundary edges).
+inline double metric_distance_to_boundary(const Intrinsic_triangulation& itri, int v)
+{
+  const Eigen::Vector3d& p = itri.position(v);
+  double d = std::numeric_limits<double>::infinity();
+  for(int e = 0; e < int(itri.number_of_halfedges()); ++e) {
+    if(!itri.is_boundary_edge(e)) continue;
+    const Eigen::Vector3d a = itri.position(itri.tail(e)), ab = itri.position(itri.head(e)) - a;
+    const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    d = std::min(d, (itri.Q(v) * (a + t * ab - p)).norm());
+  }
+  return d;
+}
+
+// The corners the plane keeps with its creases (corners_to_fix() with output edge length `h`), those on
+// the boundary marked as corners of the boundary (its 1D CVT then has a site exactly there; the embedding
+// keeps their turning angle): not a boundary vertex within half of `h` (in the metric) of a corner of the
+// boundary already, nor an interior one within half of `h` of the boundary, whose fixed site would make a
+// sliver with the boundary's sites (CGAL's cylinder_locally_refined at 2000 vertices: theta_min 1.3
+// degrees with them, 36.9 without creases followed).
+inline std::vector<std::size_t> plane_corners_to_fix(const Feature_graph& g, Intrinsic_triangulation& itri, double h)
+{
+  std::vector<int> boundary_corners;
+  for(int v = 0; v < int(itri.number_of_vertices()); ++v)
+    if(itri.is_corner(v)) boundary_corners.push_back(v);
+  std::vector<std::size_t> kept;
+  for(std::size_t v : corners_to_fix(g, itri, h)) {
+    const int w = int(v);
+    if(!itri.is_boundary_vertex(w)) {
+      if(metric_distance_to_boundary(itri, w) >= 0.5 * h) kept.push_back(v);
+      continue;
+    }
+    bool apart = true;
+    for(int c : boundary_corners)
+      if(c != w && (0.5 * (itri.Q(w) + itri.Q(c)) * (itri.position(c) - itri.position(w))).norm() < 0.5 * h) apart = false;
+    if(!apart) continue;
+    kept.push_back(v);
+    if(!itri.is_corner(w)) {
+      itri.set_corner(w, true);
+      boundary_corners.push_back(w);
+    }
+  }
+  return kept;
+}
+
+// In the plane with the creases followed (issue 15, item 2), the same steps as closed_domain_dual() around
+// the boundary's own sites: the `corners` (plane_corners_to_fix()) on the boundary are corners of the boundary
+// (marked before the embedding, so its 1D CVT has a site exactly there and a crease ending there ends at
+// that site; a crease is never a boundary edge, detect_features()), the others are fixed sites inside,
+// followed by the crease sites (place_crease_sites()), after the boundary's sites
+// (Traits_with_interior_fixed_sites); then `cvt_and_dual(traits)` and the crease edges recovered. No crease
+// site is placed within half an output edge (in the metric at the site) of the boundary: the polygon of the
+// boundary sites bounds the dual, and a fixed site near it would make a sliver or fall outside.
+template <typename Domain, typename CvtAndDual>
+Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Feature_graph& features, const Intrinsic_triangulation& itri,
+                                          const typename Domain::Embedding& emb, const std::vector<std::size_t>& corners,
+                                          const Remeshing_options& options, Remeshing_result& result, CvtAndDual& cvt_and_dual)
+{
+  const std::size_t n = options.number_of_vertices, nv = itri.number_of_vertices();
+  const double h = result.refinement.output_edge_length;
+  std::vector<std::size_t> inner;  // the corners inside, as fixed sites
+  std::vector<std::size_t> site_of(nv, std::size_t(-1));  // background vertex -> index among the fixed sites inside
+  for(std::size_t v : corners)
+    if(!itri.is_boundary_vertex(int(v))) {
+      site_of[v] = inner.size();
+      inner.push_back(v);
+    }
+  auto fixed = corner_sites<Domain>(emb, itri, inner);
+  std::vector<char> taken(nv, 0);
+  for(std::size_t v : corners) taken[v] = 1;
+  // the boundary's metric length, and the chain vertices too near it
+  double perimeter = 0;
+  for(int e = 0; e < int(itri.number_of_halfedges()); ++e)
+    if(itri.is_boundary_edge(e)) perimeter += itri.length(e);
+  const auto chains = crease_chains(itri, surface, features);
+  for(const auto& ch : chains)
+    for(const auto& tv : ch) {
+      const int v = tv.second;
+      if(!taken[std::size_t(v)] && (itri.is_boundary_vertex(v) || metric_distance_to_boundary(itri, v) < 0.5 * h))
+        taken[std::size_t(v)] = 1;
+    }
+  const std::size_t boundary_sites = std::size_t(std::ceil(perimeter / h));  // about as many as the boundary gets
+  const Crease_sites crease_sites =
+      place_crease_sites(itri, features, chains, h, std::move(taken),
+                         n - std::min(n, fixed.size() + boundary_sites + std::max<std::size_t>(4, n / 4)), corners);
+  for(std::size_t c = 0; c < features.curves.size(); ++c)
+    for(int v : crease_sites.vertices[c]) {
+      site_of[std::size_t(v)] = fixed.size();
+      fixed.push_back(seam_site<Domain>(emb, itri, v));
+    }
+  Traits_with_interior_fixed_sites<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
+  Remeshed_surface dual = cvt_and_dual(traits);
+  // per curve its sites as output vertices (site i is output vertex i), its corners at the ends
+  const std::size_t nb = traits.number_of_boundary_sites();
+  std::vector<std::size_t> boundary_site(nv, std::size_t(-1));
+  for(std::size_t i = 0; i < nb; ++i) {
+    const int w = traits.boundary_site_vertex(i);
+    if(w >= 0 && std::size_t(w) < nv) boundary_site[std::size_t(w)] = i;
+  }
+  auto output_vertex = [&](std::size_t v) { return site_of[v] != std::size_t(-1) ? nb + site_of[v] : boundary_site[v]; };
+  std::vector<std::vector<std::size_t>> crease_chain;
+  std::vector<char> crease_closed;
+  for(std::size_t c = 0; c < features.curves.size(); ++c) {
+    const Feature_curve& curve = features.curves[c];
+    std::vector<std::size_t> chain;
+    const std::size_t front = output_vertex(curve.vertices.front()), back = output_vertex(curve.vertices.back());
+    if(!curve.closed && front != std::size_t(-1)) chain.push_back(front);
+    for(int v : crease_sites.vertices[c]) chain.push_back(output_vertex(std::size_t(v)));
+    if(!curve.closed && back != std::size_t(-1)) chain.push_back(back);
+    crease_chain.push_back(std::move(chain));
+    crease_closed.push_back(curve.closed ? 1 : 0);
+  }
+  const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
+  result.crease_sites = crease_sites.size();
+  result.crease_edges_recovered = joined.first;
+  result.crease_edges_missing = joined.second;
+  result.boundary_sites = nb;  // the interior fixed sites are not boundary
+  return dual;
+}
+
+// The pipeline from `start` (start_pipeline()) on its background `itri`: the rest of stage 2 (with
+// `follow_creases` the creases of a closed domain refined, crease_sites.h), the conformal embedding, the
+// weighted CVT and the dual in `Domain`, the surface optimisation, the quality and the checks. `result`
+// starts as `start.result`.
 template <typename Domain, typename AnisotropicMetric>
-Remeshed_surface run_pipeline_once(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
-                                   const Remeshing_options& options, Visitor_handle& vis, bool follow_creases, bool& creases_tried)
+Remeshed_surface finish_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, const Pipeline_start& start,
+                                 Intrinsic_triangulation itri, Remeshing_result& result, const Remeshing_options& options,
+                                 Visitor_handle& vis, bool follow_creases)
 {
   const auto np = canonical_parameters(options, vis);
   const std::size_t n = options.number_of_vertices;
-  if(n == 0) throw Invalid_input("remesh(): the number of output vertices must be given (number_of_vertices) and positive");
-  if(n < 3) throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(n) + " were requested");
-  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;  // the closed domains keep the corners
-  // a surface with boundary loops in a closed domain: its holes closed by patches (issue 15, item 3)
-  std::unique_ptr<const Hole_patches> patches;
-  if(closed && !surface.boundary_loops().empty() && !(Domain::kind == Parametric_domain::SPHERE && surface.is_disk()))
-    patches.reset(new Hole_patches(close_holes(surface)));
-  const Input_surface& background = patches ? patches->closed : surface;
-  if(!Domain::fits(background))
-    throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
-                        surface.topology_description() + " (the " + domain_name(Domain::kind) + " domain takes " +
-                        Domain::topology() + ")");
-  Domain::check_number_of_vertices(background, n);
-  result = Remeshing_result();
-  result.domain = Domain::kind;
-  result.input_vertices = surface.number_of_vertices();
-  result.input_faces = surface.number_of_faces();
-  // the input's sharp features (issue 15): measured on the output below, their time counted as the metric's
-  const auto features_start = std::chrono::steady_clock::now();
-  const Feature_graph features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges,
-                                                   options.feature_vertices);
-  const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
-  if(closed) check_vertices_for_corners(features.corners.size(), n, options.feature_angle);
-
-  // 1. metric, 2. edge lengths
+  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;
+  result = start.result;
+  const Hole_patches* patches = start.patches.get();
+  // the creases are kept as chains of output edges (issue 15, item 2): their background pieces refined
+  // here, fixed sites along them in closed_domain_dual() or planar_dual_with_creases()
+  const Feature_graph* creases = follow_creases && !start.features.curves.empty() ? &start.features : nullptr;
   double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
-  // in a closed domain the creases are kept as chains of output edges (issue 15, item 2): their background
-  // pieces refined here, fixed sites along them below
-  const Feature_graph* creases = follow_creases && closed && !features.curves.empty() ? &features : nullptr;
-  creases_tried = creases != nullptr;
-  Intrinsic_triangulation itri = patches ? metric_and_edge_lengths(background, Patched_metric<AnisotropicMetric>(metric, *patches), n, np,
-                                                                   vis, result, patches.get(), &surface, &loop_edge_length, creases)
-                                         : metric_and_edge_lengths(surface, metric, n, np, vis, result, nullptr, nullptr, nullptr, creases);
-  result.seconds[int(Stage::METRIC)] += features_seconds;
+  finish_edge_lengths(itri, start.background(surface), n, np, vis, result, start.edge_lengths_seconds, patches,
+                      patches ? &surface : nullptr, patches ? &loop_edge_length : nullptr, creases);
+  // in the plane, the corners kept with the creases; those on the boundary become the boundary's corners
+  std::vector<std::size_t> plane_corners;
+  if(!closed && creases) plane_corners = plane_corners_to_fix(start.features, itri, result.refinement.output_edge_length);
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Stage_timer t3(vis, Stage::EMBEDDING);
@@ -114,21 +364,7 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
   record_embedding(emb, result);
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
   const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
-  // the sites (in a closed domain the input's corners first, fixed), the CVT and the dual, with any traits
-  // with patches on the sphere, when they cover half of it or more, one more fixed site at a patch's
-  // apex (removed from the output), at each apex that sees every edge of its loop's chain of sites under
-  // 60 degrees at most: no large patch is left without a site, which the sphere's dual needs (its sites
-  // must not all lie in one hemisphere). Elsewhere no site in a patch. An apex site close to its loop's
-  // chords (a small hole, 3 or 4 loop sites around it: the apex sees a loop edge under about 120 or 90
-  // degrees) made the edge between two consecutive loop sites a Delaunay edge only if the free site
-  // facing it saw it under at most 60 or 90 degrees, which the CVT's free sites next to the loop do not
-  // keep (torus_with_hole.off failed at 100 to 1000 vertices). With only loop sites on the patch side
-  // (or an apex seeing the edge under 60 degrees at most), a loop edge is in the dual whenever the free
-  // site facing it lies outside the circle through it and the loop site facing it across the patch (the
-  // loop's own circle for a round hole), as at a boundary of the plane. `apexes` is set with the loops'
-  // sites below.
-  const bool apex_sites_needed = patches && patches_need_apex_sites<Domain>(itri, emb);
-  std::size_t apexes = 0;
+  std::size_t apexes = 0;  // the patches' apex sites on the sphere, set by closed_domain_dual()
   auto cvt_and_dual = [&](auto& traits) {
     auto sites = traits.initial_sites(n + apexes, options.random_seed);
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
@@ -138,74 +374,10 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
     return dual;
   };
   Remeshed_surface out = [&] {
-    if constexpr(Domain::kind != Parametric_domain::PLANE) {
-      std::vector<std::size_t> corners = corners_to_fix(features, itri, result.refinement.output_edge_length);
-      if(patches)  // the loops' corners are placed with their sites
-        corners.erase(std::remove_if(corners.begin(), corners.end(), [&](std::size_t v) { return itri.seam(int(v)) >= 0; }), corners.end());
-      auto fixed = corner_sites<Domain>(emb, itri, corners);
-      // the crease sites after the corners, at equal metric arc length along each curve (crease_sites.h)
-      Crease_sites crease_sites;
-      std::vector<std::vector<std::size_t>> crease_chain;  // per curve, its sites as output vertices, with its fixed corners
-      std::vector<char> crease_closed;
-      if(creases) {
-        const double h = patches ? loop_edge_length : result.refinement.output_edge_length;
-        std::vector<char> taken(itri.number_of_vertices(), 0);
-        std::vector<std::size_t> corner_index(itri.number_of_vertices(), std::size_t(-1));
-        for(std::size_t j = 0; j < corners.size(); ++j) {
-          taken[corners[j]] = 1;
-          corner_index[corners[j]] = j;
-        }
-        crease_sites = place_crease_sites(itri, features, crease_chains(itri, surface, features), h, std::move(taken),
-                                          n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), corners);
-        for(std::size_t c = 0; c < features.curves.size(); ++c) {
-          const Feature_curve& curve = features.curves[c];
-          std::vector<std::size_t> chain;
-          if(!curve.closed && corner_index[curve.vertices.front()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.front()]);
-          for(int v : crease_sites.vertices[c]) {
-            chain.push_back(fixed.size());
-            fixed.push_back(seam_site<Domain>(emb, itri, v));
-          }
-          if(!curve.closed && corner_index[curve.vertices.back()] != std::size_t(-1)) chain.push_back(corner_index[curve.vertices.back()]);
-          crease_chain.push_back(std::move(chain));
-          crease_closed.push_back(curve.closed ? 1 : 0);
-        }
-      }
-      Loop_sites loops;
-      std::vector<std::size_t> first;
-      if(patches) {
-        loops = place_loop_sites(itri, *patches, loop_edge_length, options.corner_angle,
-                                 n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)));
-        for(const auto& l : loops.vertices) {
-          first.push_back(fixed.size());
-          for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
-        }
-        first.push_back(fixed.size());
-        if constexpr(Domain::kind == Parametric_domain::SPHERE)
-          if(apex_sites_needed)
-            for(std::size_t l = 0; l < patches->loops.size(); ++l) {
-              auto apex = seam_site<Domain>(emb, itri, int(patches->apex[l]));
-              const std::size_t k = loops.vertices[l].size();
-              bool narrow = true;
-              for(std::size_t j = 0; j < k && narrow; ++j) {
-                const Eigen::Vector3d u = fixed[first[l] + j].site - apex.site, v = fixed[first[l] + (j + 1) % k].site - apex.site;
-                narrow = std::atan2(u.cross(v).norm(), u.dot(v)) <= 3.14159265358979323846 / 3;
-              }
-              if(narrow) fixed.push_back(apex);
-            }
-        apexes = fixed.size() - first.back();
-      }
-      Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
-      Remeshed_surface dual = cvt_and_dual(traits);
-      if(patches) remove_patch_triangles(dual, loops, first, apexes, surface.number_of_vertices());
-      if(creases) {
-        const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
-        result.crease_sites = crease_sites.size();
-        result.crease_edges_recovered = joined.first;
-        result.crease_edges_missing = joined.second;
-      }
-      result.boundary_sites = loops.size();  // the crease corners are not boundary
-      return dual;
+    if constexpr(closed) {
+      return closed_domain_dual<Domain>(surface, start, itri, emb, loop_edge_length, creases, options, result, apexes, cvt_and_dual);
     } else {
+      if(creases) return planar_dual_with_creases<Domain>(surface, start.features, itri, emb, plane_corners, options, result, cvt_and_dual);
       typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);
       return cvt_and_dual(traits);
     }
@@ -217,28 +389,32 @@ Remeshed_surface run_pipeline_once(const Input_surface& surface, const Anisotrop
   // 6. quality in the metric, orientation against the input, topology and distance to the input
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);
   const auto measure_start = std::chrono::steady_clock::now();
-  result.features = measure_features(surface, features, out.points, out.faces);
+  result.features = measure_features(surface, start.features, out.points, out.faces);
   result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   return out;
 }
 
-// The pipeline, following the creases in a closed domain; if that run fails (Remeshing_failure: the
-// crease pieces split in the background can make a thin or sharply folded input's embedding fail, as on
-// test/data/cases/pillow_005.off at 150 vertices), the run without them, as before issue 15 item 2, whose
-// result (or failure) stands, with the first run's reason in Remeshing_result::creases_not_followed.
+// The pipeline, following the creases; if that run fails after the creases were
+// refined (Remeshing_failure: the crease pieces split in the background can make a thin or sharply folded
+// input's embedding fail, as on test/data/cases/pillow_005.off at 150 vertices), the run without them, as
+// before issue 15 item 2, from the background kept before the crease refinement (start_pipeline(), not
+// recomputed), whose result (or failure) stands, with the first run's reason in
+// Remeshing_result::creases_not_followed. A failure before the crease refinement is not retried.
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                               const Remeshing_options& options, Visitor_handle& vis)
 {
-  bool tried = false;
+  Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
+  const bool creases = !start.features.curves.empty();
+  if(!creases) return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false);
   std::string reason;
   try {
-    return run_pipeline_once<Domain>(surface, metric, result, options, vis, true, tried);
+    return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true);
   } catch(const Remeshing_failure& e) {
-    if(!tried) throw;
     reason = e.what();
   }
-  Remeshed_surface out = run_pipeline_once<Domain>(surface, metric, result, options, vis, false, tried);
+  vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
+  Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false);
   result.creases_not_followed = reason;
   return out;
 }

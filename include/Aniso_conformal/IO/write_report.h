@@ -127,7 +127,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                      {"covered_length", report_number(r.features.covered_length)},
                      {"covered_share", report_number(r.features.covered_share)}};
   if(!r.creases_not_followed.empty()) j["features"]["creases_not_followed"] = r.creases_not_followed;
-  if(r.crease_sites > 0) {  // absent: no crease site placed (the plane, or no crease curve)
+  if(r.crease_sites > 0) {  // absent: no crease site placed (no crease curve, or curves too short for one)
     j["features"]["crease_sites"] = r.crease_sites;
     j["features"]["crease_edges_recovered"] = r.crease_edges_recovered;
     j["features"]["crease_edges_missing"] = r.crease_edges_missing;

@@ -28,8 +28,9 @@
 #include <utility>
 #include <vector>
 
-// The creases of the input (Feature_graph.h) as chains of output edges in the closed domains (issue 15,
-// item 2). The crease curves are kept the way the holes' loops are (hole_patches.h), without a patch:
+// The creases of the input (Feature_graph.h) as chains of output edges in every domain (issue 15, item
+// 2; the plane places its sites around its boundary's, remesh_in_domain.h planar_dual_with_creases()).
+// The crease curves are kept the way the holes' loops are (hole_patches.h), without a patch:
 // 1. the background's pieces of crease edges are split at their midpoints (points of the input crease)
 //    until none is longer than a third of the output edge length, before any flip (pipeline_steps.h);
 // 2. fixed sites are placed along each curve at about equal metric arc length, spacing the output edge
@@ -101,8 +102,7 @@ inline std::size_t refine_creases(Intrinsic_triangulation& itri, const Input_sur
 {
   if(g.curves.empty()) return 0;
   auto length = [&](int a, int b) { return metric_segment_length(itri.position(a), itri.position(b), itri.Q(a), itri.Q(b)); };
-  typedef std::tuple<double, int, int> Entry;
-  std::priority_queue<Entry> queue;
+  Longest_edge_queue queue;
   const auto chains = crease_chains(itri, input, g);
   for(std::size_t c = 0; c < chains.size(); ++c) {
     const auto& ch = chains[c];
@@ -112,27 +112,8 @@ inline std::size_t refine_creases(Intrinsic_triangulation& itri, const Input_sur
       if(a != b) queue.emplace(length(a, b), a, b);
     }
   }
-  std::size_t splits = 0;
-  while(!queue.empty() && std::get<0>(queue.top()) > longest) {
-    const Entry top = queue.top();
-    queue.pop();
-    const int a = std::get<1>(top), b = std::get<2>(top);
-    int h = itri.find_halfedge(a, b);
-    if(h < 0) h = itri.find_halfedge(b, a);
-    if(h < 0) continue;  // a piece left out (a chain broken by a seam vertex): not a background edge
-    if(itri.number_of_vertices() >= most)
-      throw Remeshing_failure("remesh(): the creases need more than " + std::to_string(most) +
-                              " background vertices to carry their sites");
-    const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
-    Surface_point sp = input.project(mid);
-    sp.position = mid;
-    const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
-    ++splits;
-    queue.emplace(length(a, m), a, m);
-    queue.emplace(length(m, b), m, b);
-  }
-  if(splits > 0) compute_metric_edge_lengths(itri);
-  return splits;
+  // a piece not found (a chain broken by a seam vertex) is not a background edge: left out
+  return split_longest_at_input_midpoints(itri, input, queue, longest, most, [](int) { return true; }, "the creases");
 }
 
 // The crease sites: per curve, the background vertices of its sites strictly inside it (open curve) or

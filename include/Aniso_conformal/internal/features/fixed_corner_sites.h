@@ -179,6 +179,66 @@ private:
   std::vector<Corner_site<Point>> m_corners;
 };
 
+// Domain traits of the plane (Planar_domain_traits, whose own fixed sites are the boundary's, which its
+// dual takes as the polygon that bounds the mesh) with the input's interior corners and crease sites as
+// more fixed sites (issue 15, item 2, in the plane): the traits' boundary sites first, then these, then
+// the traits' free sites less the one nearest to each of these (the free sites are stratified over the
+// density; dropping the nearest keeps the sampling even). `boundary_site_vertex()` and the rest are the
+// traits' own. With no site given it is the traits exactly (same sites, same output bit for bit).
+template <typename Traits>
+class Traits_with_interior_fixed_sites : public Traits {
+public:
+  typedef typename Traits::Point Point;
+
+  // the plane's traits (from its make_traits()) and the interior sites (corner_sites(), seam_site())
+  Traits_with_interior_fixed_sites(Traits&& traits, std::vector<Corner_site<Point>> sites)
+    : Traits(std::move(traits)), m_sites(std::move(sites))
+  {}
+
+  // the traits' `n` sites with `k` free ones replaced by the interior fixed sites after the boundary's
+  // \throws Remeshing_failure if the traits leave fewer than `k` free sites (a boundary that takes most)
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
+  {
+    const std::size_t k = m_sites.size();
+    std::vector<Point> sites = Traits::initial_sites(n, seed);
+    if(k == 0) return sites;
+    const std::size_t nb = Traits::number_of_fixed_sites();
+    if(sites.size() < nb + k)
+      throw Remeshing_failure("remesh(): the boundary takes " + std::to_string(nb) + " of the " + std::to_string(n) +
+                              " output vertices, too many to keep " + std::to_string(k) + " corners and crease vertices inside");
+    std::vector<Point> free(sites.begin() + std::ptrdiff_t(nb), sites.end());
+    for(const auto& c : m_sites) {
+      std::size_t best = 0;
+      for(std::size_t j = 1; j < free.size(); ++j)
+        if((free[j] - c.site).squaredNorm() < (free[best] - c.site).squaredNorm()) best = j;
+      free.erase(free.begin() + std::ptrdiff_t(best));
+    }
+    sites.resize(nb);
+    for(const auto& c : m_sites) sites.push_back(c.site);
+    sites.insert(sites.end(), free.begin(), free.end());
+    return sites;
+  }
+  // the boundary's sites and the interior fixed sites
+  std::size_t number_of_fixed_sites() const { return Traits::number_of_fixed_sites() + m_sites.size(); }
+  // the boundary's sites as many as the traits placed
+  std::size_t number_of_boundary_sites() const { return Traits::number_of_fixed_sites(); }
+  // an interior fixed site is exactly its background corner; the others are located by the traits
+  bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const
+  {
+    const std::size_t nb = Traits::number_of_fixed_sites();
+    if(i >= nb && i < nb + m_sites.size()) {
+      face = m_sites[i - nb].face;
+      bary = Eigen::Vector3d::Zero();
+      bary[m_sites[i - nb].corner] = 1.0;
+      return true;
+    }
+    return Traits::background_location(i, site, face, bary);
+  }
+
+private:
+  std::vector<Corner_site<Point>> m_sites;
+};
+
 } // namespace internal
 } // namespace Aniso_conformal
 

@@ -176,30 +176,11 @@ inline double edge_length_without_patches(const Intrinsic_triangulation& itri, s
 inline std::size_t refine_seams(Intrinsic_triangulation& itri, const Input_surface& input, double longest, std::size_t most)
 {
   auto length = [&](int a, int b) { return metric_segment_length(itri.position(a), itri.position(b), itri.Q(a), itri.Q(b)); };
-  typedef std::tuple<double, int, int> Entry;
-  std::priority_queue<Entry> queue;
+  Longest_edge_queue queue;
   for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
     if(itri.is_edge_representative(h) && itri.is_seam_edge(h)) queue.emplace(length(itri.tail(h), itri.head(h)), itri.tail(h), itri.head(h));
-  std::size_t splits = 0;
-  while(!queue.empty() && std::get<0>(queue.top()) > longest) {
-    const Entry top = queue.top();
-    queue.pop();
-    const int h = itri.find_halfedge(std::get<1>(top), std::get<2>(top));
-    if(h < 0 || !itri.is_seam_edge(h)) continue;
-    if(itri.number_of_vertices() >= most)
-      throw Remeshing_failure("remesh(): the boundary loops need more than " + std::to_string(most) +
-                              " background vertices to carry their sites");
-    const int a = itri.tail(h), b = itri.head(h);
-    const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
-    Surface_point sp = input.project(mid);
-    sp.position = mid;
-    const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
-    ++splits;
-    queue.emplace(length(a, m), a, m);
-    queue.emplace(length(m, b), m, b);
-  }
-  if(splits > 0) compute_metric_edge_lengths(itri);
-  return splits;
+  return split_longest_at_input_midpoints(itri, input, queue, longest, most, [&](int h) { return itri.is_seam_edge(h); },
+                                          "the boundary loops");
 }
 
 // Makes the seam edges closer to intrinsically Delaunay, as a constrained Delaunay refinement does: the

@@ -81,28 +81,44 @@ inline std::size_t mark_corners(const Input_surface& s, Intrinsic_triangulation&
   return n;
 }
 
-// stages 1 and 2: the metric at the input vertices, the corners of the boundary, the background refined
-// for `n` output vertices, the adjusted lengths. With `patches` (`surface` is then `patches->closed`, the
+// Stage 1 and the start of stage 2: the metric at the input vertices, the corners of the boundary, the
+// background refined for `n` output vertices. With `patches` (`surface` is then `patches->closed`, the
 // `input` with its holes closed, and `metric` extends the input's onto the patches) the patches and seams
-// are tagged, the seams refined to a quarter of the output edge length `*edge_length` (measured without
-// the patches, returned there). With `creases` (the input's feature graph, in a closed domain) the
-// background's pieces of the crease edges are refined to a third of the output edge length
-// (refine_creases(); nothing happens without a crease curve).
+// are tagged, the seams refined to a quarter of the output edge length (measured without the patches).
+// Stage 2 is left open (its start told to the visitor, its seconds so far in `edge_lengths_seconds`):
+// finish_edge_lengths() ends it. run_pipeline() keeps this background to retry without the creases.
 template <typename AnisotropicMetric, typename NamedParameters, typename Visitor>
-Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, const AnisotropicMetric& metric, std::size_t n,
-                                                const NamedParameters& np, Visitor& vis, Remeshing_result& result,
-                                                const Hole_patches* patches = nullptr, const Input_surface* input = nullptr,
-                                                double* edge_length = nullptr, const Feature_graph* creases = nullptr)
+Intrinsic_triangulation metric_and_background(const Input_surface& surface, const AnisotropicMetric& metric, std::size_t n,
+                                              const NamedParameters& np, Visitor& vis, Remeshing_result& result,
+                                              double& edge_lengths_seconds, const Hole_patches* patches = nullptr,
+                                              const Input_surface* input = nullptr)
 {
   Stage_timer t1(vis, Stage::METRIC);
   Intrinsic_triangulation itri(surface, compute_metric_square_roots(surface, metric));
   if(patches) tag_hole_patches(itri, *patches);
   result.corners = mark_corners(surface, itri, corner_angle(np));
   result.seconds[int(Stage::METRIC)] = t1.stop(vis);
-  Stage_timer t2(vis, Stage::EDGE_LENGTHS);
+  vis.on_stage_started(Stage::EDGE_LENGTHS);
+  const auto start = std::chrono::steady_clock::now();
   result.refinement = refine_background(itri, surface, metric, n);
   if(patches)
     refine_seams(itri, *input, 0.25 * edge_length_without_patches(itri, n), 64 * n + 4 * result.refinement.vertices_before);
+  edge_lengths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return itri;
+}
+
+// The rest of stage 2 on the background of metric_and_background() (`surface`, `patches` and `input` as
+// there): with `creases` (the input's feature graph, in a closed domain) the background's pieces of the
+// crease edges are refined to a third of the output edge length (refine_creases(); nothing happens without
+// a crease curve); then the adjusted lengths; with `patches` the seams made closer to Delaunay and the
+// output edge length without the patches returned in `*edge_length`. Ends stage 2 for the visitor, its
+// seconds `seconds_before` (metric_and_background()'s share) plus this step's.
+template <typename NamedParameters, typename Visitor>
+void finish_edge_lengths(Intrinsic_triangulation& itri, const Input_surface& surface, std::size_t n, const NamedParameters& np,
+                         Visitor& vis, Remeshing_result& result, double seconds_before, const Hole_patches* patches = nullptr,
+                         const Input_surface* input = nullptr, double* edge_length = nullptr, const Feature_graph* creases = nullptr)
+{
+  const auto start = std::chrono::steady_clock::now();
   // to a third of the output edge length: a quarter (as the loops) split each crease edge of
   // cube_grid.off (test/data/cases) in 4 at 120 and 150 vertices, and the spherical embedding's intrinsic
   // Delaunay flips then never ended (a regular grid of ties); 0.3 to 0.5 kept 100 % of its creases at
@@ -119,8 +135,9 @@ Intrinsic_triangulation metric_and_edge_lengths(const Input_surface& surface, co
   }
   result.background_vertices = itri.number_of_vertices();
   result.background_faces = itri.number_of_faces();
-  result.seconds[int(Stage::EDGE_LENGTHS)] = t2.stop(vis);
-  return itri;
+  result.seconds[int(Stage::EDGE_LENGTHS)] =
+      seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  vis.on_stage_finished(Stage::EDGE_LENGTHS, result.seconds[int(Stage::EDGE_LENGTHS)]);
 }
 
 // the figures every embedding has
