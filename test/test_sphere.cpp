@@ -572,8 +572,8 @@ BOOST_AUTO_TEST_CASE(thin_closed_pillow_remeshes_at_few_and_many_vertices)
       BOOST_TEST(r.inverted_triangles == 0u);
       BOOST_TEST(r.quality.G_avg > 0.88);
       BOOST_TEST(r.quality.theta_min > 10.0);
-      // its rim is a crease (issue 15): at 150 the run that follows it fails in the embedding, and the run
-      // without it stands (Remeshing_result::creases_not_followed says why)
+      // its rim is a crease (issue 15): at 150 the run with its pieces split fails in the embedding, and the
+      // run with the crease sites on the rim's own vertices follows it (test_features)
       BOOST_TEST_MESSAGE("pillow at " << n << ": " << r.crease_sites << " crease sites, covered " << r.features.covered_share
                                       << (r.creases_not_followed.empty() ? "" : "; creases not followed: " + r.creases_not_followed));
     }

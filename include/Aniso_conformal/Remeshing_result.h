@@ -74,8 +74,9 @@ struct Remeshing_result {
   /// pairs of consecutive crease sites (or corners) left without an output edge between them (the crease
   /// coverage of `features` then misses that piece)
   std::size_t crease_edges_missing = 0;
-  /// empty, or why the creases were not followed: the run with crease sites failed with this message
-  /// (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)
+  /// empty, or why the creases were not followed: the runs with crease sites (their pieces refined, then,
+  /// if pieces were split, the sites on the input's own crease vertices) failed, the first with this
+  /// message (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)
   std::string creases_not_followed;
   /// what the domain measured (flat torus: the lattice; sphere: the angle distortion; hyperbolic disk:
   /// the group's relation error and the tiles reached), written by the report writers as they are

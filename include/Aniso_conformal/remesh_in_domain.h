@@ -335,13 +335,14 @@ Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Fe
 }
 
 // The pipeline from `start` (start_pipeline()) on its background `itri`: the rest of stage 2 (with
-// `follow_creases` the creases of a closed domain refined, crease_sites.h), the conformal embedding, the
-// weighted CVT and the dual in `Domain`, the surface optimisation, the quality and the checks. `result`
-// starts as `start.result`.
+// `follow_creases` the creases kept, crease_sites.h: with `crease_splits` their background pieces refined
+// first, the splits counted there; without it the crease sites on the background's own crease vertices),
+// the conformal embedding, the weighted CVT and the dual in `Domain`, the surface optimisation, the
+// quality and the checks. `result` starts as `start.result`.
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface finish_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, const Pipeline_start& start,
                                  Intrinsic_triangulation itri, Remeshing_result& result, const Remeshing_options& options,
-                                 Visitor_handle& vis, bool follow_creases)
+                                 Visitor_handle& vis, bool follow_creases, std::size_t* crease_splits)
 {
   const auto np = canonical_parameters(options, vis);
   const std::size_t n = options.number_of_vertices;
@@ -353,7 +354,7 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   const Feature_graph* creases = follow_creases && !start.features.curves.empty() ? &start.features : nullptr;
   double loop_edge_length = 0;  // with patches: the output edge length over the surface without them
   finish_edge_lengths(itri, start.background(surface), n, np, vis, result, start.edge_lengths_seconds, patches,
-                      patches ? &surface : nullptr, patches ? &loop_edge_length : nullptr, creases);
+                      patches ? &surface : nullptr, patches ? &loop_edge_length : nullptr, creases, crease_splits);
   // in the plane, the corners kept with the creases; those on the boundary become the boundary's corners
   std::vector<std::size_t> plane_corners;
   if(!closed && creases) plane_corners = plane_corners_to_fix(start.features, itri, result.refinement.output_edge_length);
@@ -394,27 +395,40 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   return out;
 }
 
-// The pipeline, following the creases; if that run fails after the creases were
-// refined (Remeshing_failure: the crease pieces split in the background can make a thin or sharply folded
-// input's embedding fail, as on test/data/cases/pillow_005.off at 150 vertices), the run without them, as
-// before issue 15 item 2, from the background kept before the crease refinement (start_pipeline(), not
-// recomputed), whose result (or failure) stands, with the first run's reason in
-// Remeshing_result::creases_not_followed. A failure before the crease refinement is not retried.
+// The pipeline, following the creases, in up to three runs from the background kept after the refinement
+// of stage 2 (start_pipeline(), not recomputed; a failure before it is not retried):
+// 1. the crease pieces refined to a third of the output edge length (the crease sites then sit at about the
+//    spacing asked for);
+// 2. if run 1 fails (Remeshing_failure) after splitting crease pieces: the crease sites on the
+//    background's own crease vertices, nothing split. The splits can make a thin or sharply folded input's
+//    embedding fail (test/data/cases/pillow_005.off at 150 vertices: the rim's midpoints, each joined to a
+//    fan of the rim's thin latitude strips, turned 89 triangles over on the sphere), while the background
+//    unsplit is the one the run without creases embeds;
+// 3. if that fails too: the run without creases, as before issue 15 item 2, whose result (or failure)
+//    stands, with the first run's reason in Remeshing_result::creases_not_followed.
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                               const Remeshing_options& options, Visitor_handle& vis)
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
   const bool creases = !start.features.curves.empty();
-  if(!creases) return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false);
+  if(!creases) return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
   std::string reason;
+  std::size_t splits = 0;
   try {
-    return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true);
+    return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits);
   } catch(const Remeshing_failure& e) {
     reason = e.what();
   }
-  vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
-  Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false);
+  if(splits > 0) {
+    vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
+    try {
+      return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr);
+    } catch(const Remeshing_failure&) {
+    }
+  }
+  vis.on_stage_started(Stage::EDGE_LENGTHS);
+  Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
   result.creases_not_followed = reason;
   return out;
 }
