@@ -130,7 +130,7 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
       flips += f;
       if(f == 0) break;
     }
-    const std::size_t moved = opt.relocation_pass();
+    const std::size_t moved = opt.relocation_pass() + opt.angle_pass();
     report.flips += flips;
     report.relocations += moved;
     report.rounds = round;
