@@ -235,6 +235,95 @@ public:
     return moved;
   }
 
+  // whether the mesh has fixed vertices inside (corners and crease sites of the input's features, issue
+  // 15): only then does angle_pass() do anything, so an output without them is optimised as before
+  bool has_interior_fixed_vertices() const
+  {
+    for(V v : m_mesh.vertices())
+      if(std::size_t(v.idx()) < m_out.fixed_vertices && !m_mesh.is_isolated(v) && !m_mesh.is_border(v, false)) return true;
+    return false;
+  }
+
+  // one pass of max-min angle relocation (optimisation-based smoothing, Freitag and Plassmann 2000: a
+  // vertex moves where the smallest angle of its one-ring grows) of every free vertex whose one-ring has
+  // an angle below 30 degrees in the metric, on an output with fixed vertices inside (corners and crease
+  // sites: a fixed site the CVT could not move leaves its free neighbours where its Voronoi cell ended,
+  // and a short fixed edge, two corners closer than the output edge length, gets a free vertex at the
+  // usual distance across it, a thin triangle the centroid moves of relocation_pass() do not cure: CGAL's
+  // three_peaks at 2000 vertices, theta_min 20.6 degrees). Targets: for each triangle (v, a, b) of the
+  // ring whose smallest angle is the ring's, the apex of the equilateral triangle on (a, b) on v's side
+  // and the points 1/2 and 1/4 of the way there, projected onto the input. A move is accepted when it
+  // makes no triangle of the ring inverted that was not, raises the ring's smallest angle and lowers
+  // neither its G_min nor its count below 30 degrees (G_avg may drop a little: the smallest angle is what
+  // this pass is for). Returns the number of vertices moved; 0 on an output without fixed vertices inside.
+  std::size_t angle_pass()
+  {
+    if(!m_angle_pass_checked) {
+      m_angle_pass = has_interior_fixed_vertices();
+      m_angle_pass_checked = true;
+    }
+    if(!m_angle_pass) return 0;
+    std::size_t moved = 0;
+    std::vector<F> ring;
+    for(V v : m_mesh.vertices()) {
+      const std::size_t i = v.idx();
+      if(m_fixed[i]) continue;
+      ring.clear();
+      for(H h : CGAL::halfedges_around_target(m_mesh.halfedge(v), m_mesh))
+        if(!m_mesh.is_border(h)) ring.push_back(m_mesh.face(h));
+      const Local_score before = ring_score(ring);
+      if(before.inverted > 0 || !(before.angle_min < 30)) continue;
+      const Eigen::Vector3d p = P(v);
+      std::vector<Eigen::Vector3d> targets;
+      for(F f : ring) {
+        const auto t = corners(f);
+        if(!(figures(t[0], t[1], t[2]).smallest_angle <= before.angle_min)) continue;
+        // the edge (a, b) opposite v
+        V a = t[0], b = t[1];
+        if(t[0] == v) {
+          a = t[1];
+          b = t[2];
+        } else if(t[1] == v) {
+          a = t[2];
+          b = t[0];
+        }
+        const Eigen::Vector3d m = 0.5 * (P(a) + P(b)), e = P(b) - P(a);
+        const double len = e.norm();
+        if(!(len > 0)) continue;
+        Eigen::Vector3d d = (p - m) - (p - m).dot(e) / (len * len) * e;
+        if(!(d.norm() > 0)) continue;
+        const Eigen::Vector3d apex = m + (0.5 * std::sqrt(3.0) * len / d.norm()) * d;
+        for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (apex - p));
+      }
+      const Surface_point old_sp = m_out.surface_points[i];
+      const Eigen::Matrix3d old_Q = m_Q[i];
+      const Eigen::Vector3d old_normal = interpolated_normal(old_sp);
+      Local_score best = before;
+      Surface_point best_sp = old_sp;
+      Eigen::Matrix3d best_Q = old_Q;
+      for(const Eigen::Vector3d& y : targets) {
+        if(!y.allFinite()) continue;
+        Surface_point sp = m_surface.project(y);
+        if(m_surface.is_planar()) sp.position.z() = 0;
+        if(!m_surface.is_planar() && !(interpolated_normal(sp).dot(old_normal) > 0)) continue;
+        m_out.surface_points[i] = sp;
+        m_out.points[i] = sp.position;
+        m_Q[i] = symmetric_sqrt(m_metric.tensor(sp));
+        const Local_score s = ring_score(ring);
+        if(s.inverted == 0 && s.angle_min > best.angle_min + 1e-9 && s.G_min >= before.G_min && s.below_30 <= before.below_30) {
+          best = s;
+          best_sp = sp;
+          best_Q = m_Q[i];
+        }
+      }
+      m_out.surface_points[i] = best_sp;
+      m_out.points[i] = best_sp.position;
+      m_Q[i] = best_Q;
+      if(best.angle_min > before.angle_min) ++moved;
+    }
+    return moved;
+  }
+
   // writes the faces back into the output (positions and surface points are updated in place); the faces
   // are left untouched when no edge was flipped
   void write_faces()
@@ -305,6 +394,7 @@ private:
   std::vector<char> m_fixed;
   std::vector<std::array<std::size_t, 2>> m_kept;  // Remeshed_surface::kept_edges, sorted: never flipped
   bool m_flipped = false;
+  bool m_angle_pass = false, m_angle_pass_checked = false;  // angle_pass(): fixed vertices inside
 };
 
 } // namespace internal
