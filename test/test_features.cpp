@@ -517,6 +517,56 @@ BOOST_AUTO_TEST_CASE(a_crease_edge_the_dual_missed_is_recovered_by_one_flip_or_c
   BOOST_TEST(!has15);
 }
 
+BOOST_AUTO_TEST_CASE(a_crease_edge_that_crosses_three_edges_is_recovered_by_a_sequence_of_flips)
+{
+  // a regular hexagon of side 1 (0 and 1 its opposite corners on the x axis, 2, 3 above, 4, 5 below) with
+  // a vertex above (6) and below (7), cut so that the segment from 0 to 1 crosses the edges (2, 4), (2, 5)
+  // and (3, 5): one flip cannot join 0 and 1, three in turn do
+  const double h = std::sqrt(3.0) / 2;
+  const std::vector<Eigen::Vector3d> points = {{0, 0, 0},      {2, 0, 0},  {0.5, h, 0}, {1.5, h, 0},
+                                               {0.5, -h, 0},   {1.5, -h, 0}, {1, 1.8, 0}, {1, -1.8, 0}};
+  const std::vector<AC::Input_surface::Face> faces = {{{0, 4, 2}}, {{2, 4, 5}}, {{2, 5, 3}}, {{3, 5, 1}}, {{2, 3, 6}}, {{5, 4, 7}}};
+  const AC::Input_surface hexagon(points, faces);
+  auto make = [&] {
+    AC::Remeshed_surface out;
+    out.points = points;
+    out.faces.assign(faces.begin(), faces.end());
+    for(std::size_t v = 0; v < points.size(); ++v) out.surface_points.push_back(AC::Surface_point::at_vertex(v, points[v]));
+    return out;
+  };
+  auto has_edge = [](const AC::Remeshed_surface& out, std::size_t a, std::size_t b) {
+    for(const auto& f : out.faces)
+      for(int k = 0; k < 3; ++k)
+        if(std::min(f[k], f[(k + 1) % 3]) == std::min(a, b) && std::max(f[k], f[(k + 1) % 3]) == std::max(a, b)) return true;
+    return false;
+  };
+  AC::Remeshed_surface out = make();
+  const auto joined = AC::internal::recover_crease_edges(hexagon, out, {{0, 1}}, {0});
+  BOOST_TEST(joined.first == 1u);
+  BOOST_TEST(joined.second == 0u);
+  BOOST_TEST(has_edge(out, 0, 1));
+  BOOST_TEST((out.kept_edges == std::vector<std::array<std::size_t, 2>>{{{0, 1}}}));
+  // still a disk of 6 triangles, none inverted, none with an angle below 30 degrees (the old smallest)
+  BOOST_TEST(out.faces.size() == 6u);
+  std::vector<AC::Input_surface::Face> after(out.faces.begin(), out.faces.end());
+  BOOST_TEST(AC::Input_surface(out.points, after).is_disk());
+  for(const auto& f : out.faces) {
+    const Eigen::Vector3d u = out.points[f[1]] - out.points[f[0]], v = out.points[f[2]] - out.points[f[0]];
+    BOOST_TEST(u.cross(v).z() > 0);
+    for(int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = out.points[f[(k + 1) % 3]] - out.points[f[k]], q = out.points[f[(k + 2) % 3]] - out.points[f[k]];
+      BOOST_TEST(std::atan2(p.cross(q).norm(), p.dot(q)) * 180 / std::acos(-1.0) > 30 - 1e-9);
+    }
+  }
+  // with the middle crossed edge kept (a crease already joined), nothing is flipped and the pair is missing
+  AC::Remeshed_surface locked = make();
+  locked.kept_edges.push_back({{2, 5}});
+  const auto none = AC::internal::recover_crease_edges(hexagon, locked, {{0, 1}}, {0});
+  BOOST_TEST(none.first == 0u);
+  BOOST_TEST(none.second == 1u);
+  BOOST_TEST((locked.faces == make().faces));
+}
+
 BOOST_AUTO_TEST_CASE(creases_and_corners_of_a_disk_are_kept_in_the_plane)
 {
   // issue 15, item 2, in the plane: pyramid_grid.off (scripts/make_pyramid_grid.py), a disk with 4 creases

@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <deque>
 #include <map>
 #include <queue>
 #include <string>
@@ -40,7 +41,7 @@
 //    of the midpoints, ~1e-16 of the edge);
 // 3. after the dual, consecutive sites of a curve must be joined by an output edge: one that is not is
 //    recovered by flipping the one output edge between them when both new triangles stay non-inverted,
-//    else left (measure_features() reports the covered share honestly); the edges that join consecutive
+//    or else by a sequence of flips along the segment between them (recover_edge_by_flips()), else left (measure_features() reports the covered share honestly); the edges that join consecutive
 //    sites are handed to the surface optimisation as edges never to flip (Remeshed_surface::kept_edges).
 // The background needs no tag: its vertices never move, only its connectivity changes, so a background
 // vertex found on a crease stays a point of the crease whatever the embeddings flip.
@@ -198,13 +199,198 @@ inline Crease_sites place_crease_sites(const Intrinsic_triangulation& itri, cons
   return out;
 }
 
+// Joins the output vertices `a` and `b` of `out` by an edge through a sequence of edge flips, the
+// flip-based edge recovery of constrained Delaunay triangulation (Sloan, "A fast algorithm for generating
+// constrained Delaunay triangulations", Computers & Structures 47(3), 1993, section 3; Shewchuk's
+// "Lecture notes on Delaunay mesh generation", 1999, section 2.5), on the surface: the triangles around the
+// segment from a to b are projected onto the plane normal to the area-weighted mean normal of the
+// triangles at a and b. The walk from a toward b lists the output edges the segment crosses (it fails when
+// the segment meets a vertex, a boundary edge or an edge of `is_kept`); each is flipped in turn when its
+// two triangles make a convex quadrilateral in that plane, both its ends keep 3 neighbours or more
+// (`valence`) and neither new triangle is inverted (triangle_is_inverted(), the input's normals), else it
+// goes back to the end of the list; a new edge that still crosses the segment goes back too. At most
+// `max_flips` flips. Then the new edges other than (a, b) are flipped where that raises the smallest angle
+// of their two triangles (same guards), and the whole sequence is accepted only when the smallest angle of
+// the triangles it changed is at least the old ones' or `least_angle` degrees. Returns whether (a, b) is an
+// edge after; when not, `out.faces`, `face_of` and `valence` are as they were.
+template <typename Kept>
+bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
+                           std::map<std::pair<std::size_t, std::size_t>, std::size_t>& face_of,
+                           std::vector<std::size_t>& valence, std::size_t a, std::size_t b, double side,
+                           const Kept& is_kept, std::size_t max_flips, double least_angle)
+{
+  if(a == b || a >= out.points.size() || b >= out.points.size()) return false;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for(const auto& F : out.faces)
+    if(F[0] == a || F[1] == a || F[2] == a || F[0] == b || F[1] == b || F[2] == b)
+      n += (out.points[F[1]] - out.points[F[0]]).cross(out.points[F[2]] - out.points[F[0]]);
+  if(surface.is_planar()) n = Eigen::Vector3d(0, 0, side < 0 ? -1 : 1);
+  if(!(n.norm() > 0)) return false;
+  n.normalize();
+  const Eigen::Vector3d e1 = n.unitOrthogonal(), e2 = n.cross(e1), pa = out.points[a];
+  auto xy = [&](std::size_t v) {
+    const Eigen::Vector3d d = out.points[v] - pa;
+    return Eigen::Vector2d(d.dot(e1), d.dot(e2));
+  };
+  const double ab2 = (xy(b)).squaredNorm();
+  if(!(ab2 > 0)) return false;
+  const double eps = 1e-12 * ab2;
+  // sign of the turn p -> q -> r in the plane: +1 left, -1 right, 0 within eps
+  auto orient = [&](std::size_t p, std::size_t q, std::size_t r) {
+    const Eigen::Vector2d P = xy(p), u = xy(q) - P, w = xy(r) - P;
+    const double o = u.x() * w.y() - u.y() * w.x();
+    return o > eps ? 1 : (o < -eps ? -1 : 0);
+  };
+  auto third = [&](std::size_t f, std::size_t p, std::size_t q) {
+    const auto& F = out.faces[f];
+    return F[0] + F[1] + F[2] - p - q;
+  };
+  auto has_edge = [&](std::size_t p, std::size_t q) { return face_of.count({p, q}) || face_of.count({q, p}); };
+  // does the edge (p, q) cross the open segment (a, b)?
+  auto crosses = [&](std::size_t p, std::size_t q) {
+    if(p == a || p == b || q == a || q == b) return false;
+    return orient(a, b, p) * orient(a, b, q) < 0 && orient(p, q, a) * orient(p, q, b) < 0;
+  };
+  // 1. the walk: the first crossed edge is opposite a in one of its triangles
+  std::size_t x = out.points.size(), y = x;
+  for(const auto& F : out.faces) {
+    int k = 0;
+    while(k < 3 && F[std::size_t(k)] != a) ++k;
+    if(k == 3) continue;
+    const std::size_t p = F[std::size_t((k + 1) % 3)], q = F[std::size_t((k + 2) % 3)];
+    if(orient(a, b, p) == 0 || orient(a, b, q) == 0) {
+      if(orient(a, b, p) == 0 && (xy(p) - xy(a)).dot(xy(b) - xy(a)) > 0) return false;  // a vertex on the way
+      if(orient(a, b, q) == 0 && (xy(q) - xy(a)).dot(xy(b) - xy(a)) > 0) return false;
+      continue;
+    }
+    if(crosses(p, q)) {
+      x = p;
+      y = q;
+      break;
+    }
+  }
+  if(x == out.points.size()) return false;
+  std::vector<std::pair<std::size_t, std::size_t>> crossed;
+  for(;;) {
+    if(crossed.size() >= max_flips || is_kept(x, y)) return false;
+    crossed.emplace_back(x, y);
+    const auto g = face_of.find({y, x});
+    if(g == face_of.end()) return false;  // a boundary edge
+    const std::size_t r = third(g->second, x, y);
+    if(r == b) break;
+    const int sr = orient(a, b, r);
+    if(sr == 0) return false;
+    if(sr == orient(a, b, x)) x = r;
+    else y = r;
+  }
+  // 2. flip them in turn
+  const std::vector<std::array<std::size_t, 3>> saved = out.faces;
+  const auto saved_face_of = face_of;
+  const std::vector<std::size_t> saved_valence = valence;
+  std::vector<std::size_t> touched;
+  std::vector<std::array<std::size_t, 3>> before_faces;
+  auto restore = [&] {
+    out.faces = saved;
+    face_of = saved_face_of;
+    valence = saved_valence;
+    return false;
+  };
+  auto smallest_angle = [&](const std::array<std::size_t, 3>& T) {
+    double m = 180;
+    for(int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d u = out.points[T[std::size_t((i + 1) % 3)]] - out.points[T[std::size_t(i)]],
+                            v = out.points[T[std::size_t((i + 2) % 3)]] - out.points[T[std::size_t(i)]];
+      m = std::min(m, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846);
+    }
+    return m;
+  };
+  // flips (u, v) when allowed (see above); `improve_only`: only when that raises the smallest angle
+  auto flip = [&](std::size_t u, std::size_t v, bool improve_only) {
+    const auto fi = face_of.find({u, v}), gi = face_of.find({v, u});
+    if(fi == face_of.end() || gi == face_of.end()) return false;
+    const std::size_t f = fi->second, g = gi->second;
+    const std::size_t w1 = third(f, u, v), w2 = third(g, u, v);  // (u, v, w1) and (v, u, w2)
+    if(w1 == w2 || has_edge(w1, w2) || valence[u] <= 3 || valence[v] <= 3 || is_kept(u, v)) return false;
+    if(orient(u, v, w1) * orient(u, v, w2) >= 0 || orient(w1, w2, u) * orient(w1, w2, v) >= 0) return false;
+    const std::array<std::size_t, 3> T1 = {{w1, u, w2}}, T2 = {{w2, v, w1}};
+    for(const auto& T : {T1, T2})
+      if(triangle_is_inverted(surface, out.points[T[0]], out.points[T[1]], out.points[T[2]], out.surface_points[T[0]],
+                              out.surface_points[T[1]], out.surface_points[T[2]], side))
+        return false;
+    if(improve_only &&
+       !(std::min(smallest_angle(T1), smallest_angle(T2)) > std::min(smallest_angle(out.faces[f]), smallest_angle(out.faces[g]))))
+      return false;
+    for(const std::size_t h : {f, g}) {
+      if(std::find(touched.begin(), touched.end(), h) == touched.end()) {
+        touched.push_back(h);
+        before_faces.push_back(saved[h]);
+      }
+      for(int k = 0; k < 3; ++k) face_of.erase({out.faces[h][std::size_t(k)], out.faces[h][std::size_t((k + 1) % 3)]});
+    }
+    out.faces[f] = T1;
+    out.faces[g] = T2;
+    for(const std::size_t h : {f, g})
+      for(int k = 0; k < 3; ++k) face_of[{out.faces[h][std::size_t(k)], out.faces[h][std::size_t((k + 1) % 3)]}] = h;
+    --valence[u];
+    --valence[v];
+    ++valence[w1];
+    ++valence[w2];
+    return true;
+  };
+  std::deque<std::pair<std::size_t, std::size_t>> queue(crossed.begin(), crossed.end());
+  std::vector<std::pair<std::size_t, std::size_t>> made;
+  std::size_t flips = 0, idle = 0;
+  while(!queue.empty()) {
+    if(flips >= max_flips || idle > queue.size()) return restore();  // a whole round without a flip: stuck
+    const auto e = queue.front();
+    queue.pop_front();
+    const auto fi = face_of.find({e.first, e.second});
+    const std::size_t w1 = fi == face_of.end() ? 0 : third(fi->second, e.first, e.second);
+    const auto gi = face_of.find({e.second, e.first});
+    const std::size_t w2 = gi == face_of.end() ? 0 : third(gi->second, e.first, e.second);
+    if(!flip(e.first, e.second, false)) {
+      queue.push_back(e);
+      ++idle;
+      continue;
+    }
+    ++flips;
+    idle = 0;
+    if(crosses(w1, w2)) queue.emplace_back(w1, w2);
+    else made.emplace_back(w1, w2);
+  }
+  if(!has_edge(a, b)) return restore();
+  // 3. the new edges that do not join a and b: flipped where that raises their triangles' smallest angle
+  for(int pass = 0; pass < 3; ++pass) {
+    bool any = false;
+    for(auto& e : made) {
+      if((e.first == a && e.second == b) || (e.first == b && e.second == a) || !has_edge(e.first, e.second)) continue;
+      const auto fi = face_of.find({e.first, e.second}), gi = face_of.find({e.second, e.first});
+      if(fi == face_of.end() || gi == face_of.end()) continue;
+      const std::size_t w1 = third(fi->second, e.first, e.second), w2 = third(gi->second, e.first, e.second);
+      if(!crosses(w1, w2) && flip(e.first, e.second, true)) {
+        e = {w1, w2};
+        any = true;
+      }
+    }
+    if(!any) break;
+  }
+  if(!has_edge(a, b)) return restore();
+  double before = 180, after = 180;
+  for(const auto& T : before_faces) before = std::min(before, smallest_angle(T));
+  for(const std::size_t h : touched) after = std::min(after, smallest_angle(out.faces[h]));
+  if(after < std::min(before, least_angle)) return restore();
+  return true;
+}
+
 // Recovers and locks the crease edges of the output `out`: `chains` lists, per curve, its sites' output
 // vertex indices in order along it (with its fixed corners at the ends; `closed` per chain: the last is
 // joined to the first). A pair not joined by an output edge is joined by flipping the one edge (c, d)
 // whose two triangles (a, c, d) and (d, c, b) hold it, when c and d keep 3 neighbours or more, neither
 // new triangle is inverted (triangle_is_inverted()) and their smallest angle is at least the old two's or
-// 20 degrees; the pairs joined are appended to
-// `out.kept_edges`. Returns (pairs joined by a flip, pairs left unjoined).
+// 20 degrees; a pair that one flip cannot join is joined by a sequence of flips, recover_edge_by_flips()
+// (at most 64 flips, the new triangles' smallest angle at least the old ones' or 20 degrees, the edges
+// already kept never flipped), else the mesh is left as it was for that pair; the pairs joined are
+// appended to `out.kept_edges`. Returns (pairs joined by flips, pairs left unjoined).
 inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surface& surface, Remeshed_surface& out,
                                                                 const std::vector<std::vector<std::size_t>>& chains,
                                                                 const std::vector<char>& closed)
@@ -285,6 +471,7 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
           done = true;
         }
       }
+      if(!done) done = recover_edge_by_flips(surface, out, face_of, valence, a, b, side, kept, 64, 20.0);
       if(done) {
         ++recovered;
         out.kept_edges.push_back({{std::min(a, b), std::max(a, b)}});
