@@ -209,8 +209,9 @@ inline Crease_sites place_crease_sites(const Intrinsic_triangulation& itri, cons
 // two triangles make a convex quadrilateral in that plane, both its ends keep 3 neighbours or more
 // (`valence`) and neither new triangle is inverted (triangle_is_inverted(), the input's normals), else it
 // goes back to the end of the list; a new edge that still crosses the segment goes back too. At most
-// `max_flips` flips. Then the new edges other than (a, b) are flipped where that raises the smallest angle
-// of their two triangles (same guards), and the whole sequence is accepted only when the smallest angle of
+// `max_flips` flips. Then the edges of the changed triangles other than (a, b) and the kept ones are
+// flipped where that raises the smallest angle of their two triangles (Lawson's local improvement, same
+// guards, 3 rounds), and the whole sequence is accepted only when the smallest angle of
 // the triangles it changed is at least the old ones' or `least_angle` degrees. Returns whether (a, b) is an
 // edge after; when not, `out.faces`, `face_of` and `valence` are as they were.
 template <typename Kept>
@@ -338,7 +339,6 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
     return true;
   };
   std::deque<std::pair<std::size_t, std::size_t>> queue(crossed.begin(), crossed.end());
-  std::vector<std::pair<std::size_t, std::size_t>> made;
   std::size_t flips = 0, idle = 0;
   while(!queue.empty()) {
     if(flips >= max_flips || idle > queue.size()) return restore();  // a whole round without a flip: stuck
@@ -356,22 +356,23 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
     ++flips;
     idle = 0;
     if(crosses(w1, w2)) queue.emplace_back(w1, w2);
-    else made.emplace_back(w1, w2);
   }
   if(!has_edge(a, b)) return restore();
-  // 3. the new edges that do not join a and b: flipped where that raises their triangles' smallest angle
+  // 3. the edges of the triangles changed, but (a, b) and the kept ones: flipped where that raises the
+  //    smallest angle of their two triangles (Lawson's local improvement, the same guards), 3 rounds
   for(int pass = 0; pass < 3; ++pass) {
-    bool any = false;
-    for(auto& e : made) {
-      if((e.first == a && e.second == b) || (e.first == b && e.second == a) || !has_edge(e.first, e.second)) continue;
-      const auto fi = face_of.find({e.first, e.second}), gi = face_of.find({e.second, e.first});
-      if(fi == face_of.end() || gi == face_of.end()) continue;
-      const std::size_t w1 = third(fi->second, e.first, e.second), w2 = third(gi->second, e.first, e.second);
-      if(!crosses(w1, w2) && flip(e.first, e.second, true)) {
-        e = {w1, w2};
-        any = true;
+    std::vector<std::pair<std::size_t, std::size_t>> edges;
+    for(const std::size_t h : touched)
+      for(int k = 0; k < 3; ++k) {
+        const std::size_t u = out.faces[h][std::size_t(k)], v = out.faces[h][std::size_t((k + 1) % 3)];
+        if(std::min(u, v) == std::min(a, b) && std::max(u, v) == std::max(a, b)) continue;
+        edges.emplace_back(std::min(u, v), std::max(u, v));
       }
-    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    bool any = false;
+    for(const auto& e : edges)
+      if(face_of.count({e.first, e.second}) && flip(e.first, e.second, true)) any = true;
     if(!any) break;
   }
   if(!has_edge(a, b)) return restore();
@@ -388,8 +389,9 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
 // whose two triangles (a, c, d) and (d, c, b) hold it, when c and d keep 3 neighbours or more, neither
 // new triangle is inverted (triangle_is_inverted()) and their smallest angle is at least the old two's or
 // 20 degrees; a pair that one flip cannot join is joined by a sequence of flips, recover_edge_by_flips()
-// (at most 64 flips, the new triangles' smallest angle at least the old ones' or 20 degrees, the edges
-// already kept never flipped), else the mesh is left as it was for that pair; the pairs joined are
+// (at most 64 flips, the changed triangles' smallest angle at least the old ones' or 15 degrees: at 20
+// it joins none of spool's 33 such pairs, at 15 16, at 10 23, at the cost of theta_min, benchmark/features.md;
+// the edges already kept never flipped), else the mesh is left as it was for that pair; the pairs joined are
 // appended to `out.kept_edges`. Returns (pairs joined by flips, pairs left unjoined).
 inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surface& surface, Remeshed_surface& out,
                                                                 const std::vector<std::vector<std::size_t>>& chains,
@@ -471,7 +473,7 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
           done = true;
         }
       }
-      if(!done) done = recover_edge_by_flips(surface, out, face_of, valence, a, b, side, kept, 64, 20.0);
+      if(!done) done = recover_edge_by_flips(surface, out, face_of, valence, a, b, side, kept, 64, 15.0);
       if(done) {
         ++recovered;
         out.kept_edges.push_back({{std::min(a, b), std::max(a, b)}});
