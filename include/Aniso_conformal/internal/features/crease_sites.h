@@ -391,7 +391,7 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
 // 20 degrees; a pair that one flip cannot join is joined by a sequence of flips, recover_edge_by_flips()
 // (at most 64 flips, the changed triangles' smallest angle at least the old ones' or 15 degrees: at 20
 // it joins none of spool's 33 such pairs, at 15 16, at 10 23, at the cost of theta_min, benchmark/features.md;
-// the edges already kept never flipped), else the mesh is left as it was for that pair; the pairs joined are
+// the edges already kept or joining another pair never flipped), else the mesh is left as it was for that pair; the pairs joined are
 // appended to `out.kept_edges`. Returns (pairs joined by flips, pairs left unjoined).
 inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surface& surface, Remeshed_surface& out,
                                                                 const std::vector<std::vector<std::size_t>>& chains,
@@ -414,6 +414,17 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
   auto kept = [&](std::size_t a, std::size_t b) {
     const std::array<std::size_t, 2> e = {{std::min(a, b), std::max(a, b)}};
     return std::find(out.kept_edges.begin(), out.kept_edges.end(), e) != out.kept_edges.end();
+  };
+  // the sequence flips no edge that joins consecutive sites either, those of pairs still to come included
+  std::vector<std::array<std::size_t, 2>> pairs;
+  for(std::size_t c = 0; c < chains.size(); ++c)
+    for(std::size_t i = 0; chains[c].size() >= 2 && i + 1 < chains[c].size() + (closed[c] ? 1 : 0); ++i) {
+      const std::size_t a = chains[c][i], b = chains[c][(i + 1) % chains[c].size()];
+      pairs.push_back({{std::min(a, b), std::max(a, b)}});
+    }
+  std::sort(pairs.begin(), pairs.end());
+  auto kept_or_pair = [&](std::size_t a, std::size_t b) {
+    return kept(a, b) || std::binary_search(pairs.begin(), pairs.end(), std::array<std::size_t, 2>{{std::min(a, b), std::max(a, b)}});
   };
   std::size_t recovered = 0, missing = 0;
   for(std::size_t c = 0; c < chains.size(); ++c) {
@@ -473,7 +484,7 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
           done = true;
         }
       }
-      if(!done) done = recover_edge_by_flips(surface, out, face_of, valence, a, b, side, kept, 64, 15.0);
+      if(!done) done = recover_edge_by_flips(surface, out, face_of, valence, a, b, side, kept_or_pair, 64, 15.0);
       if(done) {
         ++recovered;
         out.kept_edges.push_back({{std::min(a, b), std::max(a, b)}});
