@@ -238,105 +238,23 @@ struct Loop_sites {
   }
 };
 
-// Places the sites of every loop: its seam's background vertices in order, the loop's corners (input
-// vertices where the loop turns by more than `corner_angle_deg`) kept, and between two corners (or
-// around a loop without one) evenly spaced points at about `h` of metric arc length, each at the seam
-// vertex nearest in arc length (the seams are refined to a quarter of `h`). At least 3 sites a loop; in
-// all at most `budget` (the longest stretches lose sites first).
-inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Hole_patches& patches, double h, double corner_angle_deg,
-                                   std::size_t budget)
+// A stretch of a boundary loop's chain of seam vertices (place_loop_sites()): between two kept corners, or
+// the whole loop when it has none
+struct Loop_stretch {
+  std::size_t loop;
+  std::vector<double> s;  // arc length at each chain vertex from the stretch's start (its last entry the end)
+  std::vector<int> v;
+  bool closed;            // a whole loop without corner
+  std::size_t count;      // sites strictly inside (closed: all of them)
+};
+
+// The sites of place_loop_sites() from its stretches (a loop's chain between two kept corners, or a whole
+// loop without corner) and their site counts: each stretch's corner at its start, then its sites at equal
+// arc length on the nearest chain vertex (never its ends nor the previous site's vertex); per loop, in order.
+// \throws Remeshing_failure if a loop's seam has too few background vertices for its sites, or a loop
+// would keep fewer than 3
+inline Loop_sites loop_sites_on_stretches(const std::vector<Loop_stretch>& stretches, std::size_t nl)
 {
-  const std::size_t nl = patches.loops.size();
-  std::vector<std::vector<int>> chain(nl);
-  for(int v = 0; v < int(itri.number_of_vertices()); ++v)
-    if(itri.seam(v) >= 0) chain[std::size_t(itri.seam(v))].push_back(v);
-  const double limit = corner_angle_deg * 3.14159265358979323846 / 180.0;
-  struct Stretch {
-    std::size_t loop;
-    std::vector<double> s;  // arc length at each chain vertex from the stretch's start (its last entry the end)
-    std::vector<int> v;
-    bool closed;            // a whole loop without corner
-    std::size_t count;      // sites strictly inside (closed: all of them)
-  };
-  std::vector<Stretch> stretches;
-  std::vector<std::vector<int>> corners(nl);
-  for(std::size_t l = 0; l < nl; ++l) {
-    auto& c = chain[l];
-    std::sort(c.begin(), c.end(), [&](int a, int b) { return itri.seam_parameter(a) < itri.seam_parameter(b); });
-    const auto& loop = patches.loops[l];
-    std::vector<char> is_corner(c.size(), 0);
-    for(std::size_t i = 0; i < c.size(); ++i) {
-      if(itri.input_vertex(c[i]) < 0) continue;
-      const std::size_t k = std::size_t(itri.seam_parameter(c[i]));
-      const Eigen::Vector3d& p = patches.closed.points()[loop[(k + loop.size() - 1) % loop.size()]];
-      const Eigen::Vector3d& v = patches.closed.points()[loop[k]];
-      const Eigen::Vector3d& q = patches.closed.points()[loop[(k + 1) % loop.size()]];
-      const Eigen::Vector3d a = v - p, b = q - v;
-      if(std::atan2(a.cross(b).norm(), a.dot(b)) > limit) is_corner[i] = 1;
-    }
-    // a corner closer than half the spacing (in arc length) to the corner kept before it, or to the first
-    // one around the loop, is not kept: the turns of a jagged (scanned) loop would crowd the fixed sites
-    std::vector<double> arc(c.size() + 1, 0.0);
-    for(std::size_t i = 1; i <= c.size(); ++i) {
-      const int u = c[i - 1], v = c[i % c.size()];
-      arc[i] = arc[i - 1] + metric_segment_length(itri.position(u), itri.position(v), itri.Q(u), itri.Q(v));
-    }
-    std::vector<std::size_t> starts;
-    for(std::size_t i = 0; i < c.size(); ++i)
-      if(is_corner[i] && (starts.empty() || (arc[i] - arc[starts.back()] >= 0.5 * h && arc[c.size()] - arc[i] + arc[starts.front()] >= 0.5 * h)))
-        starts.push_back(i);
-    const bool none = starts.empty();
-    if(none) starts.push_back(0);
-    for(std::size_t i : starts)
-      if(!none) corners[l].push_back(c[i]);
-    for(std::size_t j = 0; j < starts.size(); ++j) {
-      Stretch st;
-      st.loop = l;
-      st.closed = none;
-      const std::size_t i0 = starts[j], i1 = j + 1 < starts.size() ? starts[j + 1] : starts[0] + c.size();
-      double s = 0;
-      for(std::size_t i = i0; i <= i1; ++i) {
-        const int v = c[i % c.size()];
-        if(i > i0) {
-          const int u = c[(i - 1) % c.size()];
-          s += metric_segment_length(itri.position(u), itri.position(v), itri.Q(u), itri.Q(v));
-        }
-        st.s.push_back(s);
-        st.v.push_back(v);
-      }
-      const double m = std::round(s / h) - (none ? 0 : 1);
-      st.count = std::size_t(std::max(0.0, m));
-      if(none) st.count = std::max<std::size_t>(st.count, 3);
-      stretches.push_back(std::move(st));
-    }
-  }
-  // at least 3 sites a loop: a short loop between few corners gets sites in its longest stretches
-  for(std::size_t l = 0; l < nl; ++l) {
-    std::size_t k = corners[l].size();
-    for(const auto& st : stretches)
-      if(st.loop == l) k += st.count;
-    for(; k < 3; ++k) {
-      Stretch* longest = nullptr;
-      for(auto& st : stretches)
-        if(st.loop == l && (!longest || st.s.back() / double(st.count + 1) > longest->s.back() / double(longest->count + 1))) longest = &st;
-      ++longest->count;
-    }
-  }
-  std::size_t total = 0;
-  for(const auto& c : corners) total += c.size();
-  for(const auto& st : stretches) total += st.count;
-  while(total > budget) {
-    Stretch* longest = nullptr;
-    for(auto& st : stretches)
-      if(st.count > (st.closed ? 3u : 0u) && (!longest || st.count > longest->count)) longest = &st;
-    if(!longest) break;
-    --longest->count;
-    --total;
-  }
-  if(total > budget)
-    throw Invalid_input("remesh(): the input's " + std::to_string(nl) + " boundary loops need at least " + std::to_string(total) +
-                        " output vertices (3 a loop and its corners) and more inside; only " + std::to_string(budget) +
-                        " are available: ask for more vertices");
   Loop_sites out;
   out.vertices.resize(nl);
   for(const auto& st : stretches) {
@@ -371,6 +289,101 @@ inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Ho
       throw Remeshing_failure("remesh(): boundary loop " + std::to_string(l) + " would keep " + std::to_string(out.vertices[l].size()) +
                               " output vertices; at least 3 are needed");
   return out;
+}
+
+// Places the sites of every loop: its seam's background vertices in order, the loop's corners (input
+// vertices where the loop turns by more than `corner_angle_deg`) kept, and between two corners (or
+// around a loop without one) evenly spaced points at about `h` of metric arc length, each at the seam
+// vertex nearest in arc length (the seams are refined to a quarter of `h`). At least 3 sites a loop; in
+// all at most `budget` (the longest stretches lose sites first).
+inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Hole_patches& patches, double h, double corner_angle_deg,
+                                   std::size_t budget)
+{
+  const std::size_t nl = patches.loops.size();
+  std::vector<std::vector<int>> chain(nl);
+  for(int v = 0; v < int(itri.number_of_vertices()); ++v)
+    if(itri.seam(v) >= 0) chain[std::size_t(itri.seam(v))].push_back(v);
+  const double limit = corner_angle_deg * 3.14159265358979323846 / 180.0;
+  std::vector<Loop_stretch> stretches;
+  std::vector<std::vector<int>> corners(nl);
+  for(std::size_t l = 0; l < nl; ++l) {
+    auto& c = chain[l];
+    std::sort(c.begin(), c.end(), [&](int a, int b) { return itri.seam_parameter(a) < itri.seam_parameter(b); });
+    const auto& loop = patches.loops[l];
+    std::vector<char> is_corner(c.size(), 0);
+    for(std::size_t i = 0; i < c.size(); ++i) {
+      if(itri.input_vertex(c[i]) < 0) continue;
+      const std::size_t k = std::size_t(itri.seam_parameter(c[i]));
+      const Eigen::Vector3d& p = patches.closed.points()[loop[(k + loop.size() - 1) % loop.size()]];
+      const Eigen::Vector3d& v = patches.closed.points()[loop[k]];
+      const Eigen::Vector3d& q = patches.closed.points()[loop[(k + 1) % loop.size()]];
+      const Eigen::Vector3d a = v - p, b = q - v;
+      if(std::atan2(a.cross(b).norm(), a.dot(b)) > limit) is_corner[i] = 1;
+    }
+    // a corner closer than half the spacing (in arc length) to the corner kept before it, or to the first
+    // one around the loop, is not kept: the turns of a jagged (scanned) loop would crowd the fixed sites
+    std::vector<double> arc(c.size() + 1, 0.0);
+    for(std::size_t i = 1; i <= c.size(); ++i) {
+      const int u = c[i - 1], v = c[i % c.size()];
+      arc[i] = arc[i - 1] + metric_segment_length(itri.position(u), itri.position(v), itri.Q(u), itri.Q(v));
+    }
+    std::vector<std::size_t> starts;
+    for(std::size_t i = 0; i < c.size(); ++i)
+      if(is_corner[i] && (starts.empty() || (arc[i] - arc[starts.back()] >= 0.5 * h && arc[c.size()] - arc[i] + arc[starts.front()] >= 0.5 * h)))
+        starts.push_back(i);
+    const bool none = starts.empty();
+    if(none) starts.push_back(0);
+    for(std::size_t i : starts)
+      if(!none) corners[l].push_back(c[i]);
+    for(std::size_t j = 0; j < starts.size(); ++j) {
+      Loop_stretch st;
+      st.loop = l;
+      st.closed = none;
+      const std::size_t i0 = starts[j], i1 = j + 1 < starts.size() ? starts[j + 1] : starts[0] + c.size();
+      double s = 0;
+      for(std::size_t i = i0; i <= i1; ++i) {
+        const int v = c[i % c.size()];
+        if(i > i0) {
+          const int u = c[(i - 1) % c.size()];
+          s += metric_segment_length(itri.position(u), itri.position(v), itri.Q(u), itri.Q(v));
+        }
+        st.s.push_back(s);
+        st.v.push_back(v);
+      }
+      const double m = std::round(s / h) - (none ? 0 : 1);
+      st.count = std::size_t(std::max(0.0, m));
+      if(none) st.count = std::max<std::size_t>(st.count, 3);
+      stretches.push_back(std::move(st));
+    }
+  }
+  // at least 3 sites a loop: a short loop between few corners gets sites in its longest stretches
+  for(std::size_t l = 0; l < nl; ++l) {
+    std::size_t k = corners[l].size();
+    for(const auto& st : stretches)
+      if(st.loop == l) k += st.count;
+    for(; k < 3; ++k) {
+      Loop_stretch* longest = nullptr;
+      for(auto& st : stretches)
+        if(st.loop == l && (!longest || st.s.back() / double(st.count + 1) > longest->s.back() / double(longest->count + 1))) longest = &st;
+      ++longest->count;
+    }
+  }
+  std::size_t total = 0;
+  for(const auto& c : corners) total += c.size();
+  for(const auto& st : stretches) total += st.count;
+  while(total > budget) {
+    Loop_stretch* longest = nullptr;
+    for(auto& st : stretches)
+      if(st.count > (st.closed ? 3u : 0u) && (!longest || st.count > longest->count)) longest = &st;
+    if(!longest) break;
+    --longest->count;
+    --total;
+  }
+  if(total > budget)
+    throw Invalid_input("remesh(): the input's " + std::to_string(nl) + " boundary loops need at least " + std::to_string(total) +
+                        " output vertices (3 a loop and its corners) and more inside; only " + std::to_string(budget) +
+                        " are available: ask for more vertices");
+  return loop_sites_on_stretches(stretches, nl);
 }
 
 // Removes from `out` the dual triangles on the patch side of every loop's chain of sites (`first[l]`,
