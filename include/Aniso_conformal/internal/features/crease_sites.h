@@ -199,6 +199,18 @@ inline Crease_sites place_crease_sites(const Intrinsic_triangulation& itri, cons
   return out;
 }
 
+// the smallest angle, in degrees, of the triangle `T` of `points` (in space)
+inline double smallest_angle_in_space(const std::vector<Eigen::Vector3d>& points, const std::array<std::size_t, 3>& T)
+{
+  double m = 180;
+  for(int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d u = points[T[std::size_t((i + 1) % 3)]] - points[T[std::size_t(i)]],
+                          v = points[T[std::size_t((i + 2) % 3)]] - points[T[std::size_t(i)]];
+    m = std::min(m, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846);
+  }
+  return m;
+}
+
 // Joins the output vertices `a` and `b` of `out` by an edge through a sequence of edge flips, the
 // flip-based edge recovery of constrained Delaunay triangulation (Sloan, "A fast algorithm for generating
 // constrained Delaunay triangulations", Computers & Structures 47(3), 1993, section 3; Shewchuk's
@@ -296,15 +308,7 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
     valence = saved_valence;
     return false;
   };
-  auto smallest_angle = [&](const std::array<std::size_t, 3>& T) {
-    double m = 180;
-    for(int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d u = out.points[T[std::size_t((i + 1) % 3)]] - out.points[T[std::size_t(i)]],
-                            v = out.points[T[std::size_t((i + 2) % 3)]] - out.points[T[std::size_t(i)]];
-      m = std::min(m, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846);
-    }
-    return m;
-  };
+  auto smallest_angle = [&](const std::array<std::size_t, 3>& T) { return smallest_angle_in_space(out.points, T); };
   // flips (u, v) when allowed (see above); `improve_only`: only when that raises the smallest angle
   auto flip = [&](std::size_t u, std::size_t v, bool improve_only) {
     const auto fi = face_of.find({u, v}), gi = face_of.find({v, u});
@@ -462,15 +466,7 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
           // nor a sliver: the smallest angle of the two new triangles (in space) at least that of the two
           // old ones, or 20 degrees (a flip joining two corners across a short crease made a 4-degree
           // triangle on CGAL's helmet)
-          auto smallest_angle = [&](const std::array<std::size_t, 3>& T) {
-            double m = 180;
-            for(int i = 0; i < 3; ++i) {
-              const Eigen::Vector3d u = out.points[T[std::size_t((i + 1) % 3)]] - out.points[T[std::size_t(i)]],
-                                    v = out.points[T[std::size_t((i + 2) % 3)]] - out.points[T[std::size_t(i)]];
-              m = std::min(m, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / 3.14159265358979323846);
-            }
-            return m;
-          };
+          auto smallest_angle = [&](const std::array<std::size_t, 3>& T) { return smallest_angle_in_space(out.points, T); };
           const double before = std::min(smallest_angle(F), smallest_angle(G)), after = std::min(smallest_angle(T1), smallest_angle(T2));
           if(after < std::min(before, 20.0)) continue;
           const std::size_t g_face = g->second;

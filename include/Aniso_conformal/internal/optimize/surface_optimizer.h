@@ -172,6 +172,14 @@ public:
     return flips;
   }
 
+  // the faces around `v` (its one-ring), into `ring` (cleared first)
+  void one_ring(V v, std::vector<F>& ring) const
+  {
+    ring.clear();
+    for(H h : CGAL::halfedges_around_target(m_mesh.halfedge(v), m_mesh))
+      if(!m_mesh.is_border(h)) ring.push_back(m_mesh.face(h));
+  }
+
   // one pass of relocation of every free vertex toward the metric-weighted centroid of its one-ring,
   // projected onto the input; returns the number of vertices moved
   std::size_t relocation_pass()
@@ -181,9 +189,7 @@ public:
     for(V v : m_mesh.vertices()) {
       const std::size_t i = v.idx();
       if(m_fixed[i]) continue;
-      ring.clear();
-      for(H h : CGAL::halfedges_around_target(m_mesh.halfedge(v), m_mesh))
-        if(!m_mesh.is_border(h)) ring.push_back(m_mesh.face(h));
+      one_ring(v, ring);
       const Local_score before = ring_score(ring);
       // the centroid of the ring's triangles weighted by their area in the metric, and the plain mean of
       // the neighbours as a fallback
@@ -268,9 +274,7 @@ public:
     for(V v : m_mesh.vertices()) {
       const std::size_t i = v.idx();
       if(m_fixed[i]) continue;
-      ring.clear();
-      for(H h : CGAL::halfedges_around_target(m_mesh.halfedge(v), m_mesh))
-        if(!m_mesh.is_border(h)) ring.push_back(m_mesh.face(h));
+      one_ring(v, ring);
       const Local_score before = ring_score(ring);
       if(before.inverted > 0 || !(before.angle_min < 30)) continue;
       const Eigen::Vector3d p = P(v);
