@@ -172,6 +172,22 @@ public:
     return flips;
   }
 
+  // moves free vertex `i` to the projection of `y` onto the input (z = 0 on a planar input), with its
+  // metric; `false` (nothing moved) if `y` is not finite or the projection lies on another sheet of a
+  // thin part (its interpolated normal against `old_normal`, the vertex's before any move): the
+  // closest point there is no move along the surface
+  bool move_onto_input(std::size_t i, const Eigen::Vector3d& y, const Eigen::Vector3d& old_normal)
+  {
+    if(!y.allFinite()) return false;
+    Surface_point sp = m_surface.project(y);
+    if(m_surface.is_planar()) sp.position.z() = 0;
+    if(!m_surface.is_planar() && !(interpolated_normal(sp).dot(old_normal) > 0)) return false;
+    m_out.surface_points[i] = sp;
+    m_out.points[i] = sp.position;
+    m_Q[i] = symmetric_sqrt(m_metric.tensor(sp));
+    return true;
+  }
+
   // the faces around `v` (its one-ring), into `ring` (cleared first)
   void one_ring(V v, std::vector<F>& ring) const
   {
@@ -221,14 +237,7 @@ public:
       const Eigen::Matrix3d old_Q = m_Q[i];
       const Eigen::Vector3d old_normal = interpolated_normal(old_sp);
       for(const Eigen::Vector3d& y : targets) {
-        if(!y.allFinite()) continue;
-        Surface_point sp = m_surface.project(y);
-        if(m_surface.is_planar()) sp.position.z() = 0;
-        // the closest point on another sheet of a thin part is no move along the surface
-        if(!m_surface.is_planar() && !(interpolated_normal(sp).dot(old_normal) > 0)) continue;
-        m_out.surface_points[i] = sp;
-        m_out.points[i] = sp.position;
-        m_Q[i] = symmetric_sqrt(m_metric.tensor(sp));
+        if(!move_onto_input(i, y, old_normal)) continue;
         if(improves(ring_score(ring), before)) {
           ++moved;
           break;
@@ -306,17 +315,11 @@ public:
       Surface_point best_sp = old_sp;
       Eigen::Matrix3d best_Q = old_Q;
       for(const Eigen::Vector3d& y : targets) {
-        if(!y.allFinite()) continue;
-        Surface_point sp = m_surface.project(y);
-        if(m_surface.is_planar()) sp.position.z() = 0;
-        if(!m_surface.is_planar() && !(interpolated_normal(sp).dot(old_normal) > 0)) continue;
-        m_out.surface_points[i] = sp;
-        m_out.points[i] = sp.position;
-        m_Q[i] = symmetric_sqrt(m_metric.tensor(sp));
+        if(!move_onto_input(i, y, old_normal)) continue;
         const Local_score s = ring_score(ring);
         if(s.inverted == 0 && s.angle_min > best.angle_min + 1e-9 && s.G_min >= before.G_min && s.below_30 <= before.below_30) {
           best = s;
-          best_sp = sp;
+          best_sp = m_out.surface_points[i];
           best_Q = m_Q[i];
         }
       }
