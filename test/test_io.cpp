@@ -21,6 +21,7 @@
 #include <Aniso_conformal/make_image_background.h>
 
 #include "mesh_checks.h"
+#include "message_checks.h"
 
 #include <nlohmann/json.hpp>
 #include <png.h>
@@ -53,11 +54,7 @@ std::string write_file(const std::string& name, const std::string& content)
   return path;
 }
 
-std::string message_of(const std::function<void()>& f)
-{
-  try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
-  return "(no Invalid_input)";
-}
+using test::message_of;
 
 // the message of reading a mesh file `name` holding `content`
 std::string mesh_file_error(const std::string& name, const std::string& content)
@@ -65,12 +62,7 @@ std::string mesh_file_error(const std::string& name, const std::string& content)
   return message_of([&] { AC::IO::read_triangle_mesh(write_file(name, content)); });
 }
 
-bool contains(const std::string& s, const std::string& part)
-{
-  if(s.find(part) != std::string::npos) return true;
-  BOOST_TEST_MESSAGE("'" << s << "' does not contain '" << part << "'");
-  return false;
-}
+using test::contains;
 
 const std::string tetra_off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
 

@@ -34,6 +34,7 @@
 
 #include "domain_concept_checks.h"
 #include "mesh_checks.h"
+#include "message_checks.h"
 
 #include <nlohmann/json.hpp>
 
@@ -103,19 +104,7 @@ void fill_mesh(const AC::Input_surface& s, Mesh& m)
 
 const std::string data_dir = ANISO_CONFORMAL_DATA_DIR;
 
-// the message of the Invalid_input that `f` throws
-std::string invalid_input_message(const std::function<void()>& f)
-{
-  try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
-  return "(no Invalid_input)";
-}
-
-bool contains(const std::string& s, const std::string& part)
-{
-  if(s.find(part) != std::string::npos) return true;
-  BOOST_TEST_MESSAGE("'" << s << "' does not contain '" << part << "'");
-  return false;
-}
+using test::contains;
 
 struct Cancel_after {
   std::size_t calls = 0, limit = 3;
@@ -506,8 +495,8 @@ BOOST_AUTO_TEST_CASE(square_background_resolves_the_metric)
   }
   BOOST_TEST(near > 10 * far);
   BOOST_TEST(AC::make_square_background(AC::Uniform_metric(), 100, 2000).number_of_vertices() >= 2000u);
-  BOOST_TEST(contains(invalid_input_message([] { AC::make_square_background(AC::Uniform_metric(), 3); }), "at least 4 output vertices"));
-  BOOST_TEST(contains(invalid_input_message([] {
+  BOOST_TEST(contains(test::message_of([] { AC::make_square_background(AC::Uniform_metric(), 3); }), "at least 4 output vertices"));
+  BOOST_TEST(contains(test::message_of([] {
                         AC::make_square_background(AC::make_analytic_metric_2([](double, double) {
                                                      return Eigen::Matrix2d(Eigen::Matrix2d::Identity() * std::nan(""));
                                                    }),

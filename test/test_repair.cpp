@@ -19,6 +19,7 @@
 #include <Aniso_conformal/remesh_in_domain.h>
 
 #include "mesh_checks.h"
+#include "message_checks.h"
 
 #include <CGAL/Surface_mesh.h>
 
@@ -41,18 +42,9 @@ const std::string cases = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/repairs
 typedef std::vector<Eigen::Vector3d> Points;
 typedef std::vector<std::vector<std::size_t>> Polygons;
 
-std::string message_of(const std::function<void()>& f)
-{
-  try { f(); } catch(const AC::Invalid_input& e) { return e.what(); }
-  return "(no Invalid_input)";
-}
+using test::message_of;
 
-bool contains(const std::string& s, const std::string& part)
-{
-  if(s.find(part) != std::string::npos) return true;
-  BOOST_TEST_MESSAGE("'" << s << "' does not contain '" << part << "'");
-  return false;
-}
+using test::contains;
 
 std::string slurp(const std::string& path)
 {
