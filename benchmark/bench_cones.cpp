@@ -40,8 +40,9 @@ std::string sphere_figure(AC::Intrinsic_triangulation t)
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.2f", 0.5 * std::log(*mm.second / *mm.first));
     return buf;
-  } catch(const AC::Error& e) {
-    return std::string("fails: ") + e.what();
+  } catch(const AC::Error& e) {  // its message without the advice in parentheses
+    const std::string what = e.what();
+    return "fails: " + what.substr(0, what.find(" ("));
   }
 }
 
@@ -71,8 +72,8 @@ void run(const std::string& path, const AC::internal::Cone_placement_options& op
   for(std::size_t v = 0; v < m.u.size(); ++v) du = std::max(du, std::abs(m.u[v] - check.u[v]));
   const double deg = 180 / 3.14159265358979323846;
   std::printf("| %s | %zu | %zu | %.1f - %.1f | %.2f | %.2f | %zu / %zu | %.2f | %.2f s, %zu it, max diff %.1e | %s |\n", name.c_str(),
-              s.number_of_vertices(), m.cones.size(), m.start_u_range, m.cones.empty() ? 0.0 : *mm.first * deg,
-              m.cones.empty() ? 0.0 : *mm.second * deg, m.u_range, m.solves, m.iterations, time, time2, check.iterations, du,
+              s.number_of_vertices(), m.cones.size(), m.cones.empty() ? 0.0 : *mm.first * deg, m.cones.empty() ? 0.0 : *mm.second * deg,
+              m.start_u_range, m.u_range, m.solves, m.iterations, time, time2, check.iterations, du,
               sphere_figure(t_sphere).c_str());
   std::fflush(stdout);
 }

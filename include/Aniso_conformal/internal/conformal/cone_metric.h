@@ -55,7 +55,7 @@ struct Cone_metric {
   std::size_t solves = 0;           // Newton solves (one for solve_cone_metric(); one per cone set tried by place_cones())
   std::size_t flips = 0;            // intrinsic Delaunay flips (the first, metric-keeping pass and the solves')
   double residual = 0;              // max |target - angle sum| over every vertex, cones included (radians)
-  std::size_t rejected_cones = 0;   // place_cones(): candidates refused because their angle left (0, 2 pi) (genus 0)
+  std::size_t rejected_cones = 0;   // place_cones() with positive_cones_only: cones withdrawn (angle 2 pi or more)
 };
 
 // the bounds of place_cones()
@@ -291,8 +291,10 @@ inline int next_cone(const std::vector<double>& u, const std::vector<char>& take
  * curvature 0 or negative).
  *
  * The result's u is shifted so that the flat metric has the area of `itri`, as in solve_cone_metric()
- * with the same cones and angles (which reproduces it). Bounded: at most `max_cones` cones and
- * `2 max_cones + 2` Newton solves that add a cone (a withdrawal adds one more); Newton bounds and visitor from the named parameters.
+ * with the same cones and angles (which reproduces it). Bounded: at most `max_cones` cones; a cone is
+ * added only while fewer than `2 max_cones + 2` solves were made (withdrawals' included), and each
+ * withdrawal removes a cone the start or an addition put, so there are at most `2 (2 max_cones + 2) + 4`
+ * solves, each bounded by the Newton bounds of the named parameters (and their visitor).
  * \throws Invalid_input if `itri` has a boundary
  * \throws Convergence_failure if the budget is not met with `max_cones` cones (or no candidate vertex is
  *         left, or the solves are spent), with the range of u reached as its residual and in its message;
@@ -322,13 +324,14 @@ Cone_metric place_cones(Intrinsic_triangulation& itri, const Cone_placement_opti
   m.start_u_range = range_of(u);
   std::string stop;
   while(true) {
-    if(options.positive_cones_only && m.genus == 0 && m.cones.size() > 3) {  // withdraw the widest cone if its curvature is not positive
+    // positive_cones_only: withdraw the widest cone if its curvature is not positive
+    if(options.positive_cones_only && m.genus == 0 && m.cones.size() > 3) {
       const int w = widest_cone(itri, u, m.cones);
       if(w >= 0) {
         m.cones.erase(m.cones.begin() + w);
         ++m.rejected_cones;
         u = dirichlet_cone_solve(itri, m.cones, bounds, vis, m);
-        continue;  // bounded: a withdrawn vertex is not taken again, and the solves are counted below
+        continue;  // bounded: a withdrawn vertex is not taken again (see the bound above)
       }
     }
     if(range_of(u) <= options.max_log_range) break;
