@@ -13,7 +13,8 @@
 //   cell areas following rho^(-1/2)), the Delaunay dual as a closed outward genus-0 surface, the way
 //   back to the background, the Voronoi cells for pictures, every error path, and the integration time.
 // - cone_metric: the flat metric with cone singularities of issue 16 (prescribed cones, Gauss-Bonnet,
-//   the greedy placement on a synthetic body with five limbs next to the sphere, every bound).
+//   the greedy placement on a synthetic body with five limbs next to the sphere, on genus 1 and 2, every
+//   bound).
 
 #define BOOST_TEST_MODULE Aniso_conformal_sphere
 #include <boost/test/unit_test.hpp>
@@ -1444,6 +1445,28 @@ BOOST_AUTO_TEST_CASE(limb_body_is_bounded_by_cones_where_the_sphere_is_not)
   } catch(const AC::Convergence_failure& x) {
     BOOST_TEST_MESSAGE("positive cones only: " << x.what());
     BOOST_TEST(x.residual() > options.max_log_range);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(cones_are_placed_on_a_torus_and_a_genus_2_surface)
+{
+  // genus 1 starts from the flat torus (no cone), genus 2 from one cone taking the whole curvature
+  // 2 pi chi = -4 pi; cones of either sign follow; Gauss-Bonnet holds for whatever is placed
+  const std::vector<std::pair<AC::Input_surface, int>> surfaces = {
+      {AC::make_dupin_cyclide(24, 16), 1}, {AC::IO::read_triangle_mesh(data_dir + "/meshes/eight_1k.off"), 2}};
+  for(const auto& sg : surfaces) {
+    AC::Intrinsic_triangulation t = background(sg.first, AC::Uniform_metric());
+    AC::internal::Cone_placement_options options;
+    const AC::internal::Cone_metric m = AC::internal::place_cones(t, options, AC::parameters::default_values());
+    const std::pair<double, double> e = angle_errors(t, m, m.cone_angles);
+    BOOST_TEST_MESSAGE("genus " << sg.second << ", " << t.number_of_vertices() << " vertices: " << m.cones.size() << " cones, range of u "
+                                << m.u_range << " (start " << m.start_u_range << "), " << m.solves << " solves");
+    BOOST_TEST(m.genus == sg.second);
+    BOOST_TEST(m.u_range <= options.max_log_range);
+    BOOST_TEST(std::abs(curvature_sum(m.cone_angles) - two_pi * (2 - 2 * sg.second)) <= 1e-6);
+    BOOST_TEST(e.first <= 1e-8);
+    BOOST_TEST(e.second <= 1e-12);
+    if(sg.second == 2) BOOST_TEST(*std::max_element(m.cone_angles.begin(), m.cone_angles.end()) > two_pi);
   }
 }
 
