@@ -1,7 +1,7 @@
 // Copyright (c) 2026 Aniso_conformal developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Closed genus-0 surfaces through the sphere, in two suites.
+// Closed genus-0 surfaces through the sphere, in three suites.
 // - The embedding and the pipeline: the ellipsoid generator, the spherical conformal embedding
 //   (puncture, planar solve, inverse stereographic projection, Moebius normalisation: exact on round
 //   spheres and their Moebius images, discretely conformal everywhere, centred), the whole pipeline on
@@ -12,6 +12,9 @@
 //   tangent directions, the constrained CVT with Lloyd and L-BFGS (monotone energy, near-uniform cells,
 //   cell areas following rho^(-1/2)), the Delaunay dual as a closed outward genus-0 surface, the way
 //   back to the background, the Voronoi cells for pictures, every error path, and the integration time.
+// - cone_metric: the flat metric with cone singularities of issue 16 (prescribed cones, Gauss-Bonnet,
+//   the greedy placement on a synthetic body with five limbs next to the sphere, on genus 1 and 2, every
+//   bound).
 
 #define BOOST_TEST_MODULE Aniso_conformal_sphere
 #include <boost/test/unit_test.hpp>
@@ -30,10 +33,12 @@
 #include <Aniso_conformal/Spherical_domain.h>
 #include <Aniso_conformal/remesh_in_domain.h>
 #include <Aniso_conformal/spherical_embedding.h>
+#include <Aniso_conformal/internal/conformal/cone_metric.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 
 #include "domain_concept_checks.h"
 #include "grid_cube.h"
+#include "limb_body.h"
 #include "mesh_checks.h"
 
 #include <Eigen/Geometry>
@@ -1287,6 +1292,210 @@ BOOST_AUTO_TEST_CASE(integration_time_on_a_fine_background)
                                                                       << lbfgs.energy.back() << " in " << ms[AC::Cvt_method::LBFGS]
                                                                       << " ms (" << lbfgs.energy_evaluations << " integrations, "
                                                                       << lbfgs.lloyd_fallbacks << " fallbacks)");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+// The cone metric of issue 16 (internal/conformal/cone_metric.h): a flat metric with cone singularities
+// instead of the sphere's, for surfaces with limbs. Prescribed cones are solved with Gauss-Bonnet checked;
+// the greedy placement bounds the range of u on a body with five limbs where the sphere cannot; every
+// bound ends in a typed exception with the figure reached.
+BOOST_AUTO_TEST_SUITE(cone_metric)
+
+namespace {
+
+const double two_pi = 2 * 3.14159265358979323846;
+
+// the largest |target - angle sum| over the non-cones (target 2 pi) and over the cones (their angles)
+std::pair<double, double> angle_errors(const AC::Intrinsic_triangulation& t, const AC::internal::Cone_metric& m,
+                                       const std::vector<double>& cone_angles)
+{
+  std::size_t degenerate = 0;
+  const std::vector<double> sums = AC::internal::scaled_angle_sums(t, m.u, degenerate);
+  BOOST_TEST(degenerate == 0u);
+  std::vector<char> cone(sums.size(), 0);
+  double at_cones = 0, elsewhere = 0;
+  for(std::size_t i = 0; i < m.cones.size(); ++i) {
+    cone[std::size_t(m.cones[i])] = 1;
+    at_cones = std::max(at_cones, std::abs(sums[std::size_t(m.cones[i])] - cone_angles[i]));
+  }
+  for(std::size_t v = 0; v < sums.size(); ++v)
+    if(!cone[v]) elsewhere = std::max(elsewhere, std::abs(sums[v] - two_pi));
+  return {elsewhere, at_cones};
+}
+
+double curvature_sum(const std::vector<double>& angles)
+{
+  double k = 0;
+  for(double a : angles) k += two_pi - a;
+  return k;
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(prescribed_cones_are_solved_and_gauss_bonnet_is_checked)
+{
+  const AC::Input_surface s = AC::make_ellipsoid(3, 1, 0.6, 0.4);
+  const AC::Intrinsic_triangulation t0 = background(s, AC::Uniform_metric());
+  const std::vector<int> cones = {0, 100, 300, 500};
+  for(const std::vector<double>& angles : {std::vector<double>{3.14159265358979323846, 3.14159265358979323846, 3.14159265358979323846,
+                                                               3.14159265358979323846},
+                                           std::vector<double>{0.5, 4.0, 2.5, 2.0 * two_pi - 7.0}}) {
+    BOOST_TEST(std::abs(curvature_sum(angles) - 2 * two_pi) <= 1e-12);  // Gauss-Bonnet, chi = 2
+    AC::Intrinsic_triangulation t = t0;
+    const AC::internal::Cone_metric m = AC::internal::solve_cone_metric(t, cones, angles, AC::parameters::default_values());
+    const std::pair<double, double> e = angle_errors(t, m, angles);
+    BOOST_TEST_MESSAGE("ellipsoid 642, cones " << angles[0] << " " << angles[1] << " " << angles[2] << " " << angles[3] << ": Newton "
+                                               << m.iterations << ", flips " << m.flips << ", errors " << e.first << " / " << e.second
+                                               << ", range of u " << m.u_range);
+    BOOST_TEST(m.genus == 0);
+    BOOST_TEST(e.first <= 1e-8);
+    BOOST_TEST(e.second <= 1e-6);
+    BOOST_TEST(m.residual <= 1e-6);
+    BOOST_TEST(m.cone_angles.size() == 4u);
+    BOOST_TEST(std::abs(curvature_sum(m.cone_angles) - 2 * two_pi) <= 1e-6);
+    BOOST_TEST(m.u_range > 0);
+  }
+  // what is not a cone metric is refused before any solve
+  AC::Intrinsic_triangulation t = t0;
+  auto solve = [&](std::vector<int> c, std::vector<double> a) { AC::internal::solve_cone_metric(t, c, a, AC::parameters::default_values()); };
+  BOOST_TEST(message_of([&] { solve({0, 100, 300}, {3.0, 3.0, 3.0}); }).find("Gauss-Bonnet") != std::string::npos);
+  BOOST_TEST(message_of([&] { solve({0, 0, 300, 500}, {3.14159265358979323846, 3.14159265358979323846, 3.14159265358979323846,
+                                                      3.14159265358979323846}); }).find("repeated") != std::string::npos);
+  BOOST_TEST(message_of([&] { solve({0, 100, 300}, {-1.0, 3.0, 3.0}); }).find("must be positive") != std::string::npos);
+  BOOST_TEST(message_of([&] { solve({0, 100}, {3.0}); }).find("2 cones but 1 angles") != std::string::npos);
+  BOOST_CHECK_THROW(solve({0, 100, 300}, {3.0, 3.0, 3.0}), AC::Invalid_input);
+  // the Newton bound: a typed exception with the residual reached
+  try {
+    AC::Intrinsic_triangulation t1 = t0;
+    AC::internal::solve_cone_metric(t1, cones, {0.5, 4.0, 2.5, 2.0 * two_pi - 7.0},
+                                    AC::parameters::max_conformal_iterations(1u).conformal_tolerance(1e-15));
+    BOOST_ERROR("one Newton iteration reached the tolerance 1e-15");
+  } catch(const AC::Convergence_failure& e) {
+    BOOST_TEST(e.residual() > 1e-15);
+    BOOST_TEST(std::string(e.what()).find("angle-sum error") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(torus_cones_sum_to_zero_curvature)
+{
+  // genus 1: no cone (the flat torus) or cones whose curvatures cancel; a lone cone breaks Gauss-Bonnet
+  const AC::Input_surface s = AC::make_dupin_cyclide(24, 16);
+  const AC::Intrinsic_triangulation t0 = background(s, AC::Uniform_metric());
+  for(const std::vector<double>& angles : {std::vector<double>{}, std::vector<double>{two_pi - 1.5, two_pi + 1.5}}) {
+    AC::Intrinsic_triangulation t = t0;
+    const std::vector<int> cones = angles.empty() ? std::vector<int>{} : std::vector<int>{10, 200};
+    const AC::internal::Cone_metric m = AC::internal::solve_cone_metric(t, cones, angles, AC::parameters::default_values());
+    const std::pair<double, double> e = angle_errors(t, m, angles);
+    BOOST_TEST(m.genus == 1);
+    BOOST_TEST(e.first <= 1e-8);
+    BOOST_TEST(e.second <= 1e-6);
+  }
+  AC::Intrinsic_triangulation t = t0;
+  BOOST_TEST(message_of([&] { AC::internal::solve_cone_metric(t, {10}, {two_pi - 1.5}, AC::parameters::default_values()); })
+                 .find("Gauss-Bonnet") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(limb_body_is_bounded_by_cones_where_the_sphere_is_not)
+{
+  // five limbs eight times longer than wide: the sphere shrinks each exponentially
+  const AC::Input_surface s = limb_body::make_limb_body();
+  BOOST_TEST(s.genus() == 0);
+  const AC::Intrinsic_triangulation t0 = background(s, AC::Uniform_metric());
+  AC::Intrinsic_triangulation t = t0;
+  AC::internal::Cone_placement_options options;  // budget: range of u 2.0
+  const auto start = std::chrono::steady_clock::now();
+  const AC::internal::Cone_metric m = AC::internal::place_cones(t, options, AC::parameters::default_values());
+  const double time = seconds_since(start);
+  const std::pair<double, double> e = angle_errors(t, m, m.cone_angles);
+  std::string sphere;
+  double sphere_range = std::numeric_limits<double>::infinity();
+  try {
+    AC::Intrinsic_triangulation ts = t0;
+    const AC::Spherical_embedding emb = AC::spherical_embedding(ts);
+    const auto mm = std::minmax_element(emb.conformal_factor.begin(), emb.conformal_factor.end());
+    sphere_range = 0.5 * std::log(*mm.second / *mm.first);
+    sphere = std::to_string(sphere_range);
+  } catch(const AC::Convergence_failure& x) {
+    sphere = x.what();
+  }
+  BOOST_TEST_MESSAGE("limb body " << s.number_of_vertices() << " vertices: " << m.cones.size() << " cones, range of u " << m.u_range
+                                  << " (start " << m.start_u_range << "), " << m.solves << " solves, " << m.iterations << " Newton, " << time
+                                  << " s; sphere: " << sphere);
+  BOOST_TEST(m.u_range <= options.max_log_range);
+  BOOST_TEST(m.cones.size() <= options.max_cones);
+  BOOST_TEST(m.start_u_range > 2 * options.max_log_range);  // four cones at the limbs' tips are not enough
+  BOOST_TEST(sphere_range > 3 * options.max_log_range);     // the sphere fails or is far worse
+  BOOST_TEST(e.first <= 1e-8);
+  BOOST_TEST(e.second <= 1e-12);  // the cone angles are the solution's angle sums
+  BOOST_TEST(std::abs(curvature_sum(m.cone_angles) - 2 * two_pi) <= 1e-6);
+  // the cone metric solve with those cones and angles, from the original triangulation, gives the same u
+  AC::Intrinsic_triangulation t2 = t0;
+  const AC::internal::Cone_metric again = AC::internal::solve_cone_metric(t2, m.cones, m.cone_angles, AC::parameters::default_values());
+  double du = 0;
+  for(std::size_t v = 0; v < m.u.size(); ++v) du = std::max(du, std::abs(m.u[v] - again.u[v]));
+  BOOST_TEST(du <= 1e-6);
+  // cones of positive curvature only cannot bound the limbs (documented limitation of that variant)
+  AC::Intrinsic_triangulation t3 = t0;
+  options.positive_cones_only = true;
+  options.max_cones = 16;
+  try {
+    AC::internal::place_cones(t3, options, AC::parameters::default_values());
+    BOOST_ERROR("positive cones bounded the limb body");
+  } catch(const AC::Convergence_failure& x) {
+    BOOST_TEST_MESSAGE("positive cones only: " << x.what());
+    BOOST_TEST(x.residual() > options.max_log_range);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(cones_are_placed_on_a_torus_and_a_genus_2_surface)
+{
+  // genus 1 starts from the flat torus (no cone), genus 2 from one cone taking the whole curvature
+  // 2 pi chi = -4 pi; cones of either sign follow; Gauss-Bonnet holds for whatever is placed
+  const std::vector<std::pair<AC::Input_surface, int>> surfaces = {
+      {AC::make_dupin_cyclide(24, 16), 1}, {AC::IO::read_triangle_mesh(data_dir + "/meshes/eight_1k.off"), 2}};
+  for(const auto& sg : surfaces) {
+    AC::Intrinsic_triangulation t = background(sg.first, AC::Uniform_metric());
+    AC::internal::Cone_placement_options options;
+    const AC::internal::Cone_metric m = AC::internal::place_cones(t, options, AC::parameters::default_values());
+    const std::pair<double, double> e = angle_errors(t, m, m.cone_angles);
+    BOOST_TEST_MESSAGE("genus " << sg.second << ", " << t.number_of_vertices() << " vertices: " << m.cones.size() << " cones, range of u "
+                                << m.u_range << " (start " << m.start_u_range << "), " << m.solves << " solves");
+    BOOST_TEST(m.genus == sg.second);
+    BOOST_TEST(m.u_range <= options.max_log_range);
+    BOOST_TEST(std::abs(curvature_sum(m.cone_angles) - two_pi * (2 - 2 * sg.second)) <= 1e-6);
+    BOOST_TEST(e.first <= 1e-8);
+    BOOST_TEST(e.second <= 1e-12);
+    if(sg.second == 2) BOOST_TEST(*std::max_element(m.cone_angles.begin(), m.cone_angles.end()) > two_pi);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(an_impossible_budget_is_refused_with_the_distortion_reached)
+{
+  const AC::Input_surface s = AC::make_ellipsoid(3, 1, 0.6, 0.4);
+  for(std::size_t max_cones : {4u, 8u}) {  // the start's four alone, then four more
+    AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
+    AC::internal::Cone_placement_options options;
+    options.max_log_range = 1e-3;
+    options.max_cones = max_cones;
+    try {
+      AC::internal::place_cones(t, options, AC::parameters::default_values());
+      BOOST_ERROR("a range of u of 1e-3 was reached on an ellipsoid");
+    } catch(const AC::Convergence_failure& e) {
+      const std::string what = e.what();
+      BOOST_TEST_MESSAGE(what);
+      BOOST_TEST(e.residual() > options.max_log_range);
+      BOOST_TEST(what.find("area distortion") != std::string::npos);
+      BOOST_TEST(what.find(std::to_string(max_cones) + " cones (the most allowed)") != std::string::npos);
+    }
+  }
+  // a boundary is refused
+  std::vector<AC::Input_surface::Face> faces = s.faces();
+  faces.pop_back();  // a disk: the ellipsoid with one face removed
+  const AC::Input_surface disk(s.points(), faces);
+  AC::Intrinsic_triangulation td = background(disk, AC::Uniform_metric());
+  BOOST_TEST(message_of([&] { AC::internal::place_cones(td, AC::internal::Cone_placement_options(), AC::parameters::default_values()); })
+                 .find("has a boundary") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
