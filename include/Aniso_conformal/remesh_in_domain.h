@@ -13,6 +13,7 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/features/boundary_distance.h>
 #include <Aniso_conformal/internal/features/crease_sites.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
@@ -213,21 +214,6 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   return dual;
 }
 
-// The distance in the metric (at `v`: its square root Q(v)) from background vertex `v` to the boundary of
-// the disk `itri` (its boundary edges, straight in space); infinite without a boundary. O(boundary edges).
-inline double metric_distance_to_boundary(const Intrinsic_triangulation& itri, int v)
-{
-  const Eigen::Vector3d& p = itri.position(v);
-  double d = std::numeric_limits<double>::infinity();
-  for(int e = 0; e < int(itri.number_of_halfedges()); ++e) {
-    if(!itri.is_boundary_edge(e)) continue;
-    const Eigen::Vector3d a = itri.position(itri.tail(e)), ab = itri.position(itri.head(e)) - a;
-    const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    d = std::min(d, (itri.Q(v) * (a + t * ab - p)).norm());
-  }
-  return d;
-}
-
 // The corners the plane keeps with its creases (corners_to_fix() with output edge length `h`), those on
 // the boundary marked as corners of the boundary (its 1D CVT then has a site exactly there; the embedding
 // keeps their turning angle): not a boundary vertex within half of `h` (in the metric) of a corner of the
@@ -240,10 +226,11 @@ inline std::vector<std::size_t> plane_corners_to_fix(const Feature_graph& g, Int
   for(int v = 0; v < int(itri.number_of_vertices()); ++v)
     if(itri.is_corner(v)) boundary_corners.push_back(v);
   std::vector<std::size_t> kept;
+  const Boundary_distance to_boundary(itri);
   for(std::size_t v : corners_to_fix(g, itri, h)) {
     const int w = int(v);
     if(!itri.is_boundary_vertex(w)) {
-      if(metric_distance_to_boundary(itri, w) >= 0.5 * h) kept.push_back(v);
+      if(to_boundary(w) >= 0.5 * h) kept.push_back(v);
       continue;
     }
     bool apart = true;
@@ -289,10 +276,11 @@ Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Fe
   for(int e = 0; e < int(itri.number_of_halfedges()); ++e)
     if(itri.is_boundary_edge(e)) perimeter += itri.length(e);
   const auto chains = crease_chains(itri, surface, features);
+  const Boundary_distance to_boundary(itri);  // in the metric (boundary_distance.h)
   for(const auto& ch : chains)
     for(const auto& tv : ch) {
       const int v = tv.second;
-      if(!taken[std::size_t(v)] && (itri.is_boundary_vertex(v) || metric_distance_to_boundary(itri, v) < 0.5 * h))
+      if(!taken[std::size_t(v)] && (itri.is_boundary_vertex(v) || to_boundary(v) < 0.5 * h))
         taken[std::size_t(v)] = 1;
     }
   const std::size_t boundary_sites = std::size_t(std::ceil(perimeter / h));  // about as many as the boundary gets
