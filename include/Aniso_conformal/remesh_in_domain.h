@@ -387,37 +387,48 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
 // of stage 2 (start_pipeline(), not recomputed; a failure before it is not retried):
 // 1. the crease pieces refined to a third of the output edge length (the crease sites then sit at about the
 //    spacing asked for);
-// 2. if run 1 fails (Remeshing_failure) after splitting crease pieces: the crease sites on the
-//    background's own crease vertices, nothing split. The splits can make a thin or sharply folded input's
-//    embedding fail (test/data/cases/pillow_005.off at 150 vertices: the rim's midpoints, each joined to a
-//    fan of the rim's thin latitude strips, turned 89 triangles over on the sphere), while the background
-//    unsplit is the one the run without creases embeds;
+// 2. if run 1 fails (Remeshing_failure) after splitting crease pieces, the refinement's own failure
+//    included (too many vertices: it splits before it gives up, finish_edge_lengths()): the crease sites on
+//    the background's own crease vertices, nothing split. The splits can make a thin or sharply folded
+//    input's embedding fail (test/data/cases/pillow_005.off at 150 vertices: the rim's midpoints, each
+//    joined to a fan of the rim's thin latitude strips, turned 89 triangles over on the sphere), while the
+//    background unsplit is the one the run without creases embeds;
 // 3. if that fails too: the run without creases, as before issue 15 item 2, whose result (or failure)
 //    stands, with the first run's reason in Remeshing_result::creases_not_followed.
+// Remeshing_result::crease_run says which run stood.
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                               const Remeshing_options& options, Visitor_handle& vis)
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
   const bool creases = !start.features.curves.empty();
-  if(!creases) return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
+  if(!creases) {
+    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
+    result.crease_run = Crease_run::NONE;
+    return out;
+  }
   std::string reason;
   std::size_t splits = 0;
   try {
-    return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits);
+    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits);
+    result.crease_run = Crease_run::REFINED;
+    return out;
   } catch(const Remeshing_failure& e) {
     reason = e.what();
   }
   if(splits > 0) {
     vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
     try {
-      return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr);
+      Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr);
+      result.crease_run = Crease_run::INPUT_VERTICES;
+      return out;
     } catch(const Remeshing_failure&) {
     }
   }
   vis.on_stage_started(Stage::EDGE_LENGTHS);
   Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
   result.creases_not_followed = reason;
+  result.crease_run = Crease_run::NOT_FOLLOWED;
   return out;
 }
 
