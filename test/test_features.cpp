@@ -13,6 +13,7 @@
 
 #include <Aniso_conformal/Feature_graph.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/IO/write_report.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
@@ -586,6 +587,8 @@ BOOST_AUTO_TEST_CASE(creases_and_corners_of_a_disk_are_kept_in_the_plane)
                                           << " of " << r.features.corners << ", G_avg " << r.quality.G_avg << ", theta_min "
                                           << r.quality.theta_min << ", %<30 " << r.quality.percent_below_30);
     BOOST_TEST(r.creases_not_followed.empty());
+    BOOST_TEST((r.crease_run == AC::Crease_run::REFINED));
+    BOOST_TEST(std::string(AC::crease_run_name(r.crease_run)) == "refined");
     BOOST_TEST(out.points.size() == n);
     BOOST_TEST(r.inverted_triangles == 0u);
     BOOST_TEST(r.features.corners_kept == 5u);
@@ -625,6 +628,7 @@ BOOST_AUTO_TEST_CASE(a_short_edge_between_two_fixed_corners_gets_no_thin_triangl
                                          << r.quality.theta_min << ", %<30 " << r.quality.percent_below_30 << ", surface optimisation "
                                          << r.surface_optimization.theta_min_before << " -> " << r.surface_optimization.theta_min_after);
   BOOST_TEST(r.creases_not_followed.empty());
+  BOOST_TEST((r.crease_run == AC::Crease_run::REFINED));
   BOOST_TEST(out.points.size() == 150u);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.features.corners_kept == 6u);
@@ -647,6 +651,8 @@ BOOST_AUTO_TEST_CASE(without_features_the_plane_is_unchanged)
   const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Planar_domain>(
     in, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(150)).feature_angle(180.0));
   BOOST_TEST(r.crease_sites == 0u);
+  BOOST_TEST((r.crease_run == AC::Crease_run::NONE));
+  BOOST_TEST(std::string(AC::crease_run_name(r.crease_run)) == "none");
   BOOST_TEST(out.fixed_vertices == r.boundary_sites);
   BOOST_TEST(out.kept_edges.empty());
   BOOST_TEST(r.features.curves == 0u);
@@ -685,6 +691,7 @@ BOOST_AUTO_TEST_CASE(a_run_whose_refined_creases_fail_follows_them_on_the_input_
   const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
     in, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(150)).visitor(std::ref(counter)));
   BOOST_TEST(r.creases_not_followed.empty());
+  BOOST_TEST((r.crease_run == AC::Crease_run::INPUT_VERTICES));
   BOOST_TEST(r.crease_sites > 10u);
   BOOST_TEST(out.points.size() == 150u);
   BOOST_TEST(r.inverted_triangles == 0u);
@@ -722,6 +729,9 @@ BOOST_AUTO_TEST_CASE(creases_that_fail_twice_give_the_run_without_them)
   AC::remesh_in_domain<AC::Spherical_domain>(in, AC::Uniform_metric(), r1, np.visitor(std::ref(once)));
   BOOST_TEST(once.started[AC::Stage::EMBEDDING] == 2);
   BOOST_TEST(r1.creases_not_followed.empty());
+  BOOST_TEST((r1.crease_run == AC::Crease_run::INPUT_VERTICES));
+  BOOST_TEST(std::string(AC::crease_run_name(r1.crease_run)) == "input-vertices");
+  BOOST_TEST(AC::IO::report_json(r1).at("features").at("crease_run") == "input-vertices");  // the report says which run stood
   BOOST_TEST(r1.crease_sites > 0u);
   BOOST_TEST(r1.features.covered_share >= 0.9);
   BOOST_TEST(r1.features.corners_kept == 8u);
@@ -734,6 +744,10 @@ BOOST_AUTO_TEST_CASE(creases_that_fail_twice_give_the_run_without_them)
   BOOST_TEST(twice.started[AC::Stage::EMBEDDING] == 3);
   BOOST_TEST(twice.started[AC::Stage::METRIC] == 1);
   BOOST_TEST(r2.creases_not_followed == "injected failure 1");
+  BOOST_TEST((r2.crease_run == AC::Crease_run::NOT_FOLLOWED));
+  BOOST_TEST(std::string(AC::crease_run_name(r2.crease_run)) == "not-followed");
+  BOOST_TEST(AC::IO::report_json(r2).at("features").at("crease_run") == "not-followed");
+  BOOST_TEST(AC::IO::report_json(r2).at("features").at("creases_not_followed") == "injected failure 1");
   BOOST_TEST(r2.crease_sites == 0u);
   BOOST_TEST(out.points.size() == 150u);
   BOOST_TEST(r2.inverted_triangles == 0u);
@@ -747,4 +761,35 @@ BOOST_AUTO_TEST_CASE(creases_that_fail_twice_give_the_run_without_them)
   BOOST_CHECK_THROW(AC::remesh_in_domain<AC::Spherical_domain>(in, AC::Uniform_metric(), r3, np.visitor(std::ref(always))),
                     AC::Remeshing_failure);
   BOOST_TEST(always.started[AC::Stage::EMBEDDING] == 3);
+}
+
+BOOST_AUTO_TEST_CASE(a_crease_refinement_that_fails_keeps_its_split_count)
+{
+  // issue 15 review: when refine_creases() itself fails (more background vertices than its bound), the
+  // splits it made were lost with the exception, and run_pipeline() skipped the second run (the crease
+  // sites on the unsplit background), which it takes when the first run split pieces. A strip 1000 x 1 in
+  // z = 0 whose middle line is a crease, for 1 output vertex: output edge length about 34, so the crease
+  // needs about 88 pieces of a third of it, but the bound is 64 n + 4 V_before + V = 64 + 0 + 6 vertices.
+  // (Through remesh() the background's own refinement refuses such an input first: the 1000 x 1 strip, a
+  // band under a metric 30 to 1600 times longer along its crease, at 3 to 30 vertices, all stop there.)
+  const double W = 1000;
+  const AC::Input_surface strip({{0, 0, 0}, {W, 0, 0}, {0, 0.5, 0}, {W, 0.5, 0}, {0, 1, 0}, {W, 1, 0}},
+                                {{{0, 1, 3}}, {{0, 3, 2}}, {{2, 3, 5}}, {{2, 5, 4}}});
+  const AC::Feature_graph g = AC::detect_features(strip, 180, 30, {{{2, 3}}}, {});
+  BOOST_REQUIRE(g.curves.size() == 1u);
+  AC::Intrinsic_triangulation itri(strip, std::vector<Eigen::Matrix3d>(6, Eigen::Matrix3d::Identity()));
+  AC::compute_metric_edge_lengths(itri);
+  AC::Default_visitor visitor;
+  AC::Remeshing_result r;  // refinement.vertices_before 0: the bound is 64 + 6
+  std::size_t splits = 0;
+  std::string message;
+  try {
+    AC::internal::finish_edge_lengths(itri, strip, 1, AC::parameters::default_values(), visitor, r, 0.0, nullptr, nullptr, nullptr, &g,
+                                      &splits);
+  } catch(const AC::Remeshing_failure& e) {
+    message = e.what();
+  }
+  BOOST_TEST(message.find("the creases need more than 70 background vertices") != std::string::npos, message);
+  BOOST_TEST(itri.number_of_vertices() == 70u);
+  BOOST_TEST(splits == 64u);  // 0 before: the second run was skipped
 }

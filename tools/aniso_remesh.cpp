@@ -155,9 +155,16 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::printf("features     input %zu curves (crease length %.4g), %zu corners; output keeps %zu of the corners and covers "
                   "%.1f %% of the crease length\n",
                   ft.curves, ft.crease_length, ft.corners, ft.corners_kept, 100.0 * ft.covered_share);
+    if(result.crease_run == AC::Crease_run::REFINED)
+      std::printf("features     crease run %s: the crease sites on the crease pieces refined\n", AC::crease_run_name(result.crease_run));
+    else if(result.crease_run == AC::Crease_run::INPUT_VERTICES)
+      std::printf("features     crease run %s: the run on refined crease pieces failed; the crease sites on the input's own crease "
+                  "vertices\n",
+                  AC::crease_run_name(result.crease_run));
     if(!result.creases_not_followed.empty())
-      std::printf("features     creases not followed: the run with crease sites failed (%s); this output is the run without them\n",
-                  result.creases_not_followed.c_str());
+      std::printf("features     crease run %s: creases not followed: the run with crease sites failed (%s); this output is the run "
+                  "without them\n",
+                  AC::crease_run_name(result.crease_run), result.creases_not_followed.c_str());
     std::printf("quality      G_min %.4f  G_avg %.4f  theta_min %.2f  theta_avg %.2f  %%<30 %.3f\n", q.G_min, q.G_avg,
                 q.theta_min, q.theta_avg, q.percent_below_30);
     std::printf("metric edge  mean length %.4g, normalised length stddev %.3f, min %.3f, max %.3f\n",

@@ -25,6 +25,33 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMain
+ * which of the runs of `remesh()` that follow the input's creases (issue 15) gave the output: up to three
+ * runs from the background after stage 2's refinement (doc/manual.md, "Sharp features");
+ * `crease_run_name()` spells each value as the JSON report and the tool's summary write it
+ */
+enum class Crease_run {
+  NONE,            ///< "none": no crease curve to follow (none found, or `feature_angle(180)` without marked edges)
+  REFINED,         ///< "refined": the first run, the crease sites on the crease pieces refined to a third of an output edge
+  INPUT_VERTICES,  ///< "input-vertices": the first run failed; the crease sites on the background's own crease vertices, nothing split
+  NOT_FOLLOWED     ///< "not-followed": both runs with crease sites failed; the run without them (`Remeshing_result::creases_not_followed` says why)
+};
+
+/*!
+ * \ingroup PkgAnisoConformalMain
+ * the name of a crease run, as the JSON report (`features.crease_run`) and the tool's summary spell it
+ */
+inline const char* crease_run_name(Crease_run r)
+{
+  switch(r) {
+  case Crease_run::REFINED: return "refined";
+  case Crease_run::INPUT_VERTICES: return "input-vertices";
+  case Crease_run::NOT_FOLLOWED: return "not-followed";
+  default: return "none";
+  }
+}
+
+/*!
+ * \ingroup PkgAnisoConformalMain
  * the diagnostics of a `remesh()` call: per-stage wall times and counts, solver figures, quality.
  * Failures are exceptions, not fields of this struct.
  */
@@ -76,9 +103,12 @@ struct Remeshing_result {
   /// coverage of `features` then misses that piece)
   std::size_t crease_edges_missing = 0;
   /// empty, or why the creases were not followed: the runs with crease sites (their pieces refined, then,
-  /// if pieces were split, the sites on the input's own crease vertices) failed, the first with this
+  /// if pieces were split or their refinement failed, the sites on the input's own crease vertices) failed, the first with this
   /// message (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)
   std::string creases_not_followed;
+  /// the run whose output this is (`Crease_run`): crease sites on refined pieces, on the input's own crease
+  /// vertices, or none (`NONE` without a crease curve; `NOT_FOLLOWED` with `creases_not_followed`)
+  Crease_run crease_run = Crease_run::NONE;
   /// what the domain measured (flat torus: the lattice; sphere: the angle distortion; hyperbolic disk:
   /// the group's relation error and the tiles reached), written by the report writers as they are
   Domain_diagnostics domain_diagnostics;

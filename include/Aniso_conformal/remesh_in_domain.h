@@ -13,6 +13,7 @@
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/features/boundary_distance.h>
 #include <Aniso_conformal/internal/features/crease_sites.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
@@ -213,21 +214,6 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   return dual;
 }
 
-// The distance in the metric (at `v`: its square root Q(v)) from background vertex `v` to the boundary of
-// the disk `itri` (its boundary edges, straight in space); infinite without a boundary. O(boundary edges).
-inline double metric_distance_to_boundary(const Intrinsic_triangulation& itri, int v)
-{
-  const Eigen::Vector3d& p = itri.position(v);
-  double d = std::numeric_limits<double>::infinity();
-  for(int e = 0; e < int(itri.number_of_halfedges()); ++e) {
-    if(!itri.is_boundary_edge(e)) continue;
-    const Eigen::Vector3d a = itri.position(itri.tail(e)), ab = itri.position(itri.head(e)) - a;
-    const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    d = std::min(d, (itri.Q(v) * (a + t * ab - p)).norm());
-  }
-  return d;
-}
-
 // The corners the plane keeps with its creases (corners_to_fix() with output edge length `h`), those on
 // the boundary marked as corners of the boundary (its 1D CVT then has a site exactly there; the embedding
 // keeps their turning angle): not a boundary vertex within half of `h` (in the metric) of a corner of the
@@ -240,10 +226,11 @@ inline std::vector<std::size_t> plane_corners_to_fix(const Feature_graph& g, Int
   for(int v = 0; v < int(itri.number_of_vertices()); ++v)
     if(itri.is_corner(v)) boundary_corners.push_back(v);
   std::vector<std::size_t> kept;
+  const Boundary_distance to_boundary(itri);
   for(std::size_t v : corners_to_fix(g, itri, h)) {
     const int w = int(v);
     if(!itri.is_boundary_vertex(w)) {
-      if(metric_distance_to_boundary(itri, w) >= 0.5 * h) kept.push_back(v);
+      if(to_boundary(w) >= 0.5 * h) kept.push_back(v);
       continue;
     }
     bool apart = true;
@@ -289,10 +276,11 @@ Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Fe
   for(int e = 0; e < int(itri.number_of_halfedges()); ++e)
     if(itri.is_boundary_edge(e)) perimeter += itri.length(e);
   const auto chains = crease_chains(itri, surface, features);
+  const Boundary_distance to_boundary(itri);  // in the metric (boundary_distance.h)
   for(const auto& ch : chains)
     for(const auto& tv : ch) {
       const int v = tv.second;
-      if(!taken[std::size_t(v)] && (itri.is_boundary_vertex(v) || metric_distance_to_boundary(itri, v) < 0.5 * h))
+      if(!taken[std::size_t(v)] && (itri.is_boundary_vertex(v) || to_boundary(v) < 0.5 * h))
         taken[std::size_t(v)] = 1;
     }
   const std::size_t boundary_sites = std::size_t(std::ceil(perimeter / h));  // about as many as the boundary gets
@@ -399,37 +387,48 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
 // of stage 2 (start_pipeline(), not recomputed; a failure before it is not retried):
 // 1. the crease pieces refined to a third of the output edge length (the crease sites then sit at about the
 //    spacing asked for);
-// 2. if run 1 fails (Remeshing_failure) after splitting crease pieces: the crease sites on the
-//    background's own crease vertices, nothing split. The splits can make a thin or sharply folded input's
-//    embedding fail (test/data/cases/pillow_005.off at 150 vertices: the rim's midpoints, each joined to a
-//    fan of the rim's thin latitude strips, turned 89 triangles over on the sphere), while the background
-//    unsplit is the one the run without creases embeds;
+// 2. if run 1 fails (Remeshing_failure) after splitting crease pieces, the refinement's own failure
+//    included (too many vertices: it splits before it gives up, finish_edge_lengths()): the crease sites on
+//    the background's own crease vertices, nothing split. The splits can make a thin or sharply folded
+//    input's embedding fail (test/data/cases/pillow_005.off at 150 vertices: the rim's midpoints, each
+//    joined to a fan of the rim's thin latitude strips, turned 89 triangles over on the sphere), while the
+//    background unsplit is the one the run without creases embeds;
 // 3. if that fails too: the run without creases, as before issue 15 item 2, whose result (or failure)
 //    stands, with the first run's reason in Remeshing_result::creases_not_followed.
+// Remeshing_result::crease_run says which run stood.
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                               const Remeshing_options& options, Visitor_handle& vis)
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
   const bool creases = !start.features.curves.empty();
-  if(!creases) return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
+  if(!creases) {
+    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
+    result.crease_run = Crease_run::NONE;
+    return out;
+  }
   std::string reason;
   std::size_t splits = 0;
   try {
-    return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits);
+    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits);
+    result.crease_run = Crease_run::REFINED;
+    return out;
   } catch(const Remeshing_failure& e) {
     reason = e.what();
   }
   if(splits > 0) {
     vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
     try {
-      return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr);
+      Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr);
+      result.crease_run = Crease_run::INPUT_VERTICES;
+      return out;
     } catch(const Remeshing_failure&) {
     }
   }
   vis.on_stage_started(Stage::EDGE_LENGTHS);
   Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
   result.creases_not_followed = reason;
+  result.crease_run = Crease_run::NOT_FOLLOWED;
   return out;
 }
 

@@ -71,7 +71,8 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * `metric_stretch`: min, median, 95th percentile and max of the metric's stretch ratio at the output
  * vertices, i.e. the anisotropy the mesh realises); `features`, only if the input has sharp features
  * (`r.features`, `Feature_report`: crease edges, curves and corners of the input, corners kept, crease length,
- * the length and share of it covered by output edges); `repairs`, only if the input was repaired on reading
+ * the length and share of it covered by output edges; `crease_run`, which run stood: `crease_run_name()` of
+ * `r.crease_run`, "refined", "input-vertices", "not-followed" (with `creases_not_followed`) or "none"); `repairs`, only if the input was repaired on reading
  * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
  * triangles they became, points welded and points left unwelded, duplicated faces removed, vertices of no face dropped, faces
  * reoriented, whether a closed surface was turned outward, whether a planar input was clockwise);
@@ -126,6 +127,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                      {"crease_length", report_number(r.features.crease_length)},
                      {"covered_length", report_number(r.features.covered_length)},
                      {"covered_share", report_number(r.features.covered_share)}};
+  if(j.contains("features")) j["features"]["crease_run"] = crease_run_name(r.crease_run);  // which run stood
   if(!r.creases_not_followed.empty()) j["features"]["creases_not_followed"] = r.creases_not_followed;
   if(r.crease_sites > 0) {  // absent: no crease site placed (no crease curve, or curves too short for one)
     j["features"]["crease_sites"] = r.crease_sites;

@@ -211,6 +211,31 @@ inline double smallest_angle_in_space(const std::vector<Eigen::Vector3d>& points
   return m;
 }
 
+// The faces of `faces` with a corner at `v`, in increasing index, from `face_of` (directed edge -> face, as
+// recover_crease_edges() keeps it): those of the directed edges leaving `v`, contiguous in the map's order.
+// O(log F + valence of v).
+inline std::vector<std::size_t> faces_at(const std::map<std::pair<std::size_t, std::size_t>, std::size_t>& face_of, std::size_t v)
+{
+  std::vector<std::size_t> around;
+  for(auto it = face_of.lower_bound({v, 0}); it != face_of.end() && it->first.first == v; ++it) around.push_back(it->second);
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  return around;
+}
+
+// Makes the faces `which[i]` of `faces` the triangles `with[i]` (an edge flip, or the undo of several), the
+// directed edges of `face_of` (directed edge -> face) updated: all the old faces' erased, then the new
+// ones' set.
+inline void replace_faces(std::vector<std::array<std::size_t, 3>>& faces, std::map<std::pair<std::size_t, std::size_t>, std::size_t>& face_of,
+                          const std::vector<std::size_t>& which, const std::vector<std::array<std::size_t, 3>>& with)
+{
+  for(const std::size_t h : which)
+    for(int k = 0; k < 3; ++k) face_of.erase({faces[h][std::size_t(k)], faces[h][std::size_t((k + 1) % 3)]});
+  for(std::size_t i = 0; i < which.size(); ++i) faces[which[i]] = with[i];
+  for(const std::size_t h : which)
+    for(int k = 0; k < 3; ++k) face_of[{faces[h][std::size_t(k)], faces[h][std::size_t((k + 1) % 3)]}] = h;
+}
+
 // Joins the output vertices `a` and `b` of `out` by an edge through a sequence of edge flips, the
 // flip-based edge recovery of constrained Delaunay triangulation (Sloan, "A fast algorithm for generating
 // constrained Delaunay triangulations", Computers & Structures 47(3), 1993, section 3; Shewchuk's
@@ -225,7 +250,9 @@ inline double smallest_angle_in_space(const std::vector<Eigen::Vector3d>& points
 // flipped where that raises the smallest angle of their two triangles (Lawson's local improvement, same
 // guards, 3 rounds), and the whole sequence is accepted only when the smallest angle of
 // the triangles it changed is at least the old ones' or `least_angle` degrees. Returns whether (a, b) is an
-// edge after; when not, `out.faces`, `face_of` and `valence` are as they were.
+// edge after; when not, `out.faces`, `face_of` and `valence` are as they were. Local: the faces at a and
+// b come from `face_of` (faces_at()), and an undo restores only the faces changed, their directed edges
+// and the valences of the flips' ends, so a call costs O((valence + flips) log F), not O(F).
 template <typename Kept>
 bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
                            std::map<std::pair<std::size_t, std::size_t>, std::size_t>& face_of,
@@ -233,11 +260,20 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
                            const Kept& is_kept, std::size_t max_flips, double least_angle)
 {
   if(a == b || a >= out.points.size() || b >= out.points.size()) return false;
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  for(const auto& F : out.faces)
-    if(F[0] == a || F[1] == a || F[2] == a || F[0] == b || F[1] == b || F[2] == b)
+  // the faces at a and at b, in increasing index (the sum of their normals in that order)
+  const std::vector<std::size_t> at_a = faces_at(face_of, a);
+  Eigen::Vector3d n(0, 0, side < 0 ? -1 : 1);
+  if(!surface.is_planar()) {
+    std::vector<std::size_t> around = faces_at(face_of, b);
+    around.insert(around.end(), at_a.begin(), at_a.end());
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    n = Eigen::Vector3d::Zero();
+    for(const std::size_t f : around) {
+      const auto& F = out.faces[f];
       n += (out.points[F[1]] - out.points[F[0]]).cross(out.points[F[2]] - out.points[F[0]]);
-  if(surface.is_planar()) n = Eigen::Vector3d(0, 0, side < 0 ? -1 : 1);
+    }
+  }
   if(!(n.norm() > 0)) return false;
   n.normalize();
   const Eigen::Vector3d e1 = n.unitOrthogonal(), e2 = n.cross(e1), pa = out.points[a];
@@ -266,7 +302,8 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
   };
   // 1. the walk: the first crossed edge is opposite a in one of its triangles
   std::size_t x = out.points.size(), y = x;
-  for(const auto& F : out.faces) {
+  for(const std::size_t f : at_a) {
+    const auto& F = out.faces[f];
     int k = 0;
     while(k < 3 && F[std::size_t(k)] != a) ++k;
     if(k == 3) continue;
@@ -297,15 +334,18 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
     else y = r;
   }
   // 2. flip them in turn
-  const std::vector<std::array<std::size_t, 3>> saved = out.faces;
-  const auto saved_face_of = face_of;
-  const std::vector<std::size_t> saved_valence = valence;
+  // what an undo needs: the faces changed with what they were, and the flips (for the valences)
   std::vector<std::size_t> touched;
   std::vector<std::array<std::size_t, 3>> before_faces;
+  std::vector<std::array<std::size_t, 4>> flipped;  // (u, v, w1, w2): u and v lost a neighbour, w1 and w2 gained one
   auto restore = [&] {
-    out.faces = saved;
-    face_of = saved_face_of;
-    valence = saved_valence;
+    replace_faces(out.faces, face_of, touched, before_faces);
+    for(const auto& e : flipped) {
+      ++valence[e[0]];
+      ++valence[e[1]];
+      --valence[e[2]];
+      --valence[e[3]];
+    }
     return false;
   };
   auto smallest_angle = [&](const std::array<std::size_t, 3>& T) { return smallest_angle_in_space(out.points, T); };
@@ -325,17 +365,13 @@ bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out,
     if(improve_only &&
        !(std::min(smallest_angle(T1), smallest_angle(T2)) > std::min(smallest_angle(out.faces[f]), smallest_angle(out.faces[g]))))
       return false;
-    for(const std::size_t h : {f, g}) {
+    for(const std::size_t h : {f, g})
       if(std::find(touched.begin(), touched.end(), h) == touched.end()) {
         touched.push_back(h);
-        before_faces.push_back(saved[h]);
+        before_faces.push_back(out.faces[h]);  // not changed before: as it was
       }
-      for(int k = 0; k < 3; ++k) face_of.erase({out.faces[h][std::size_t(k)], out.faces[h][std::size_t((k + 1) % 3)]});
-    }
-    out.faces[f] = T1;
-    out.faces[g] = T2;
-    for(const std::size_t h : {f, g})
-      for(int k = 0; k < 3; ++k) face_of[{out.faces[h][std::size_t(k)], out.faces[h][std::size_t((k + 1) % 3)]}] = h;
+    replace_faces(out.faces, face_of, {f, g}, {T1, T2});
+    flipped.push_back({{u, v, w1, w2}});
     --valence[u];
     --valence[v];
     ++valence[w1];
@@ -401,13 +437,10 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
                                                                 const std::vector<std::vector<std::size_t>>& chains,
                                                                 const std::vector<char>& closed)
 {
-  std::map<std::pair<std::size_t, std::size_t>, std::size_t> face_of;  // directed edge -> face
-  auto index = [&] {
-    face_of.clear();
-    for(std::size_t f = 0; f < out.faces.size(); ++f)
-      for(int k = 0; k < 3; ++k) face_of[{out.faces[f][std::size_t(k)], out.faces[f][std::size_t((k + 1) % 3)]}] = f;
-  };
-  index();
+  // directed edge -> face, built once and kept up to date by each flip (replace_faces())
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> face_of;
+  for(std::size_t f = 0; f < out.faces.size(); ++f)
+    for(int k = 0; k < 3; ++k) face_of[{out.faces[f][std::size_t(k)], out.faces[f][std::size_t((k + 1) % 3)]}] = f;
   std::vector<std::size_t> valence(out.points.size(), 0);  // neighbours (on the boundary too)
   for(const auto& e : face_of)
     if(e.first.first < e.first.second || !face_of.count({e.first.second, e.first.first})) {
@@ -445,7 +478,8 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
       bool done = false;
       for(int pass = 0; pass < 2 && !done; ++pass) {
         const std::size_t x = pass == 0 ? a : b, y = pass == 0 ? b : a;
-        for(std::size_t f = 0; f < out.faces.size() && !done; ++f) {
+        for(const std::size_t f : faces_at(face_of, x)) {
+          if(done) break;
           const auto& F = out.faces[f];
           int k = 0;
           while(k < 3 && F[std::size_t(k)] != x) ++k;
@@ -469,14 +503,11 @@ inline std::pair<std::size_t, std::size_t> recover_crease_edges(const Input_surf
           auto smallest_angle = [&](const std::array<std::size_t, 3>& T) { return smallest_angle_in_space(out.points, T); };
           const double before = std::min(smallest_angle(F), smallest_angle(G)), after = std::min(smallest_angle(T1), smallest_angle(T2));
           if(after < std::min(before, 20.0)) continue;
-          const std::size_t g_face = g->second;
-          out.faces[f] = T1;
-          out.faces[g_face] = T2;
+          replace_faces(out.faces, face_of, {f, g->second}, {T1, T2});
           --valence[p];
           --valence[q];
           ++valence[x];
           ++valence[y];
-          index();
           done = true;
         }
       }

@@ -110,8 +110,8 @@ Intrinsic_triangulation metric_and_background(const Input_surface& surface, cons
 // The rest of stage 2 on the background of metric_and_background() (`surface`, `patches` and `input` as
 // there): with `creases` (the input's feature graph) and `crease_splits`, the background's pieces of the
 // crease edges are refined to a third of the output edge length (refine_creases(); nothing happens without
-// a crease curve) and the number of splits stored in `*crease_splits` (without it the crease sites are
-// placed on the background's own crease vertices); then the adjusted lengths; with `patches` the seams
+// a crease curve) and the number of splits stored in `*crease_splits`, also when the refinement fails
+// (without it the crease sites are placed on the background's own crease vertices); then the adjusted lengths; with `patches` the seams
 // made closer to Delaunay and the output edge length without the patches returned in `*edge_length`. Ends
 // stage 2 for the visitor, its seconds `seconds_before` (metric_and_background()'s share) plus this step's.
 template <typename NamedParameters, typename Visitor>
@@ -125,9 +125,19 @@ void finish_edge_lengths(Intrinsic_triangulation& itri, const Input_surface& sur
   // cube_grid.off (test/data/cases) in 4 at 120 and 150 vertices, and the spherical embedding's intrinsic
   // Delaunay flips then never ended (a regular grid of ties); 0.3 to 0.5 kept 100 % of its creases at
   // every size tried from 60 to 600
-  if(creases && !creases->curves.empty() && crease_splits)
-    *crease_splits = refine_creases(itri, input ? *input : surface, *creases, (1.0 / 3.0) * edge_length_without_patches(itri, n),
-                                    64 * n + 4 * result.refinement.vertices_before + itri.number_of_vertices());
+  // a refinement that fails (Remeshing_failure: too many vertices) has split pieces before it gave up
+  // (its bound lies above the background's size): their number, the vertices it added, is stored before
+  // the failure goes on, so that run_pipeline() tries the creases on the unsplit background next
+  if(creases && !creases->curves.empty() && crease_splits) {
+    const std::size_t before = itri.number_of_vertices();
+    try {
+      *crease_splits = refine_creases(itri, input ? *input : surface, *creases, (1.0 / 3.0) * edge_length_without_patches(itri, n),
+                                      64 * n + 4 * result.refinement.vertices_before + before);
+    } catch(const Remeshing_failure&) {
+      *crease_splits = itri.number_of_vertices() - before;
+      throw;
+    }
+  }
   result.adjustment = adjust_edge_lengths(itri, surface, np);
   if(patches) {
     std::size_t seam_vertices = 0;
