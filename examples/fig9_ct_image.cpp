@@ -4,7 +4,7 @@
 // The paper's Fig. 9: a 211 x 211 grey-scale CT slice (the bundled public-domain ct_head_211.png) meshed
 // with the image metric of eq. 9, 3000 output vertices, the surface optimisation on the output
 // (Surface_optimization::ALWAYS, as for Fig. 8). The paper used s = 0.5 on its image; on this
-// high-contrast slice (metric stretch up to 30 at s = 0.5, on edges a pixel or two wide) the dual mesh
+// high-contrast slice (metric stretch up to 36 at s = 0.5, on edges a pixel or two wide) the dual mesh
 // at s = 0.5 has inverted triangles, which the surface optimisation repairs, but many thin triangles are
 // left (theta_min 4.8 degrees, 5.7 % below 30), so the example uses s = 0.2 (pass another as 4th argument).
 // Usage: fig9_ct_image [output_folder [number_of_vertices [image [s]]]]
