@@ -29,10 +29,12 @@ struct Arguments {
   }
 };
 
-/// the named parameters every figure uses: `n` output vertices, 100 CVT iterations, seed 0
-inline auto figure_parameters(std::size_t n)
+/// the named parameters every figure uses: `n` output vertices, 100 CVT iterations, seed 0, and when the
+/// surface optimisation runs (`REPAIR` by default; the images take `ALWAYS`)
+inline auto figure_parameters(std::size_t n,
+                              Aniso_conformal::Surface_optimization so = Aniso_conformal::Surface_optimization::REPAIR)
 {
-  return Aniso_conformal::parameters::number_of_vertices(n).number_of_iterations(100u).random_seed(0u);
+  return Aniso_conformal::parameters::number_of_vertices(n).number_of_iterations(100u).random_seed(0u).surface_optimization(so);
 }
 
 /// prints the sizes, the quality in the metric and the time of each stage
@@ -63,14 +65,16 @@ inline void print_paper_comparison(const Aniso_conformal::Quality_report& q, con
               paper.percent_below_30);
 }
 
-/// remeshes in `Domain`, reports and writes the pictures; `bar` prints the quality bar check (Fig. 6 and 7)
+/// remeshes in `Domain`, reports and writes the pictures; `bar` prints the quality bar check (Fig. 6
+/// and 7); `so`: when the surface optimisation runs
 template <typename Domain, typename Metric>
 int reproduce(const std::string& name, const std::string& caption, const Aniso_conformal::Input_surface& background,
-              const Metric& metric, const Arguments& a, bool bar)
+              const Metric& metric, const Arguments& a, bool bar,
+              Aniso_conformal::Surface_optimization so = Aniso_conformal::Surface_optimization::REPAIR)
 {
   namespace AC = Aniso_conformal;
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out = AC::remesh_in_domain<Domain>(background, metric, r, figure_parameters(a.vertices));
+  const AC::Remeshed_surface out = AC::remesh_in_domain<Domain>(background, metric, r, figure_parameters(a.vertices, so));
   const AC::Quality_report& q = r.quality;
   print_report(caption, r);
   if(bar) {

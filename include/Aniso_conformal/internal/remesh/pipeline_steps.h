@@ -258,7 +258,8 @@ void optimize_output(const Input_surface& surface, const AnisotropicMetric& metr
   Stage_timer t(vis, Stage::SURFACE_OPTIMIZATION);
   if(mode == Surface_optimization::ALWAYS ||
      (mode == Surface_optimization::REPAIR && (!out.kept_edges.empty() || count_inverted_triangles(surface, out, threads) > 0)))
-    result.surface_optimization = optimize_surface_mesh(surface, metric, out, defaults::surface_optimization_rounds, vis);
+    result.surface_optimization = optimize_surface_mesh(surface, metric, out, defaults::surface_optimization_rounds, vis,
+                                                        mode == Surface_optimization::ALWAYS);
   result.seconds[int(Stage::SURFACE_OPTIMIZATION)] = t.stop(vis);
 }
 
