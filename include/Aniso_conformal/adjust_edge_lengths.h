@@ -43,6 +43,9 @@ struct Edge_adjustment_report {
   std::size_t repaired_triangles = 0;
   /// rounds whose flip pass stopped at its budget (`max_flips_per_edge`) with edges still to flip
   std::size_t flip_budget_hits = 0;
+  /// flips refused because the edge's two vertices had already been joined and flipped apart twice in
+  /// the same pass: the metric-Delaunay test cycling on a quad whose metric varies across it
+  std::size_t cycling_flips_refused = 0;
 };
 
 
@@ -76,7 +79,10 @@ struct Edge_adjustment_report {
  * inserted. The number of flips of a round is bounded by `max_flips_per_edge` times the number of edges
  * it examines, plus 100 (a metric that varies across a quad can make Lawson's algorithm cycle); flipping
  * then stops for that round (`Edge_adjustment_report::flip_budget_hits`) and the splits go on: the
- * round bound still applies.
+ * round bound still applies. Before that bound, such a cycle is stopped where it happens: within one
+ * pass, an edge whose two vertices have already been joined and flipped apart twice is kept
+ * (`Edge_adjustment_report::cycling_flips_refused`), so one cycling quad no longer spends the budget
+ * of the whole pass and leaves every other edge unflipped (the CT slice at the paper's s = 0.5).
  * \throws Convergence_failure if invalid triangles remain after `max_adjustment_rounds` rounds, or when
  *         the splits stall and mollification would need more than a tenth of the median edge length
  *         (the residual is their number): the metric varies too fast for the input's resolution.
@@ -98,8 +104,10 @@ Edge_adjustment_report adjust_edge_lengths(Intrinsic_triangulation& itri, const 
   for(report.rounds = 1;; ++report.rounds) {
     // 1. metric-Delaunay flips (Lawson's queue): every edge in the first round, then only the edges
     //    around the vertices the last splits inserted (Lawson's incremental insertion): elsewhere nothing changed
-    const internal::Flip_pass pass = internal::flip_to_delaunay(itri, internal::Metric_delaunay_flip_rule(), seeds, flips_per_edge);
+    const internal::Flip_pass pass = internal::flip_to_delaunay(itri, internal::Metric_delaunay_flip_rule(), seeds, flips_per_edge,
+                                                                internal::defaults::metric_flips_per_vertex_pair);
     report.flips += pass.flips;
+    report.cycling_flips_refused += pass.capped;
     if(pass.budget_hit) ++report.flip_budget_hits;
     compute_metric_edge_lengths(itri);
 

@@ -157,7 +157,8 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                           {"rounds", r.adjustment.rounds},
                           {"repaired_triangles", r.adjustment.repaired_triangles},
                           {"mollification", report_number(r.adjustment.mollification)},
-                          {"flip_budget_hits", r.adjustment.flip_budget_hits}};
+                          {"flip_budget_hits", r.adjustment.flip_budget_hits},
+                          {"cycling_flips_refused", r.adjustment.cycling_flips_refused}};
   nlohmann::json& embedding = j["conformal_embedding"];
   embedding = {{"newton_iterations", r.conformal_iterations},
                {"residual", report_number(r.conformal_residual)},

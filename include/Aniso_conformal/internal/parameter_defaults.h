@@ -28,6 +28,9 @@ constexpr double feature_angle = 60.0;               // degrees between face nor
 constexpr unsigned number_of_threads = 0;           // 0: all cores
 constexpr unsigned max_adjustment_rounds = 50;      // stage 2
 constexpr unsigned max_flips_per_edge = 50;         // every intrinsic flip pass (stages 2 and 3)
+// stage 2: times one vertex pair's edge may be flipped away within one pass before it is kept (the
+// metric-Delaunay test is not a Delaunay criterion and can cycle on a quad; internal/intrinsic/flip_to_delaunay.h)
+constexpr std::size_t metric_flips_per_vertex_pair = 2;
 constexpr unsigned max_conformal_iterations = 100;  // Newton iterations (stage 3)
 constexpr double conformal_tolerance = 1e-9;        // radians, on the angle sums
 constexpr Parametric_domain parametric_domain = Parametric_domain::AUTOMATIC;
