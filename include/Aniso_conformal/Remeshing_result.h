@@ -97,7 +97,7 @@ struct Remeshing_result {
   /// corners not counted); 0 without a crease
   std::size_t crease_sites = 0;
   /// pairs of consecutive crease sites (or corners) the dual did not join, joined by one output edge flip
-  /// or a sequence of flips (internal/features/crease_sites.h, recover_edge_by_flips())
+  /// or a sequence of flips (internal/features/edge_recovery_by_flips.h, recover_edge_by_flips())
   std::size_t crease_edges_recovered = 0;
   /// pairs of consecutive crease sites (or corners) left without an output edge between them (the crease
   /// coverage of `features` then misses that piece)
