@@ -8,6 +8,7 @@
 
 #define BOOST_TEST_MODULE Aniso_conformal_stages
 #include <boost/test/unit_test.hpp>
+#include <Eigen/Eigenvalues>
 
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Curvature_metric.h>
@@ -1023,6 +1024,34 @@ void check_optimised(const AC::Input_surface& input, const Metric& metric, const
 }
 
 } // namespace
+
+BOOST_AUTO_TEST_CASE(metric_equilateral_apex_is_equilateral_in_the_metric)
+{
+  // the max-min angle pass's target (internal/optimize/surface_optimizer.h): on a plane tilted in space,
+  // a metric stretched 30x along one tangent direction (singular along the normal, as a surface metric
+  // may be); the apex makes the triangle equilateral in the metric, on p's side
+  const Eigen::Vector3d n = Eigen::Vector3d(0.2, -0.3, 1).normalized();
+  const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  const Eigen::Vector3d d = (0.6 * t1 + 0.8 * t2).normalized();
+  const Eigen::Matrix3d M = 900.0 * d * d.transpose() + (Eigen::Matrix3d::Identity() - n * n.transpose() - d * d.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(M);
+  const Eigen::Matrix3d Q = es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();
+  const Eigen::Vector3d a = Eigen::Vector3d(1, 2, 3), b = a + 0.7 * t1 - 0.1 * t2, p = a + 0.2 * t1 + 0.5 * t2;
+  Eigen::Vector3d x;
+  BOOST_REQUIRE(AC::internal::metric_equilateral_apex(p, a, b, Q, x));
+  auto metric_length = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return (Q * (v - u)).norm(); };
+  const double ab = metric_length(a, b);
+  BOOST_TEST(std::abs(metric_length(a, x) - ab) < 1e-9 * ab);
+  BOOST_TEST(std::abs(metric_length(b, x) - ab) < 1e-9 * ab);
+  BOOST_TEST(std::abs((x - a).dot(n)) < 1e-12);  // in the plane of a, b, p
+  BOOST_TEST(((b - a).cross(x - a)).dot((b - a).cross(p - a)) > 0);  // on p's side
+  // the isotropic metric: the apex equilateral in space
+  BOOST_REQUIRE(AC::internal::metric_equilateral_apex(p, a, b, 3.0 * Eigen::Matrix3d::Identity(), x));
+  BOOST_TEST(std::abs((x - a).norm() - (b - a).norm()) < 1e-12);
+  BOOST_TEST(std::abs((x - b).norm() - (b - a).norm()) < 1e-12);
+  // degenerate: p on the line (a, b)
+  BOOST_TEST(!AC::internal::metric_equilateral_apex(a + 2 * (b - a), a, b, Q, x));
+}
 
 BOOST_AUTO_TEST_CASE(surface_optimization_on_a_sphere_keeps_the_mesh_on_it_and_repairs_a_fold)
 {

@@ -16,6 +16,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -77,6 +78,40 @@ struct Local_score {
     angle_sum += t.smallest_angle;
   }
 };
+
+// The apex `x` of the triangle (a, b, x) equilateral in the metric `QT^2`, in the plane of (p, a, b),
+// on p's side of (a, b): in the plane's orthonormal frame the metric is the 2x2 G = T^T QT^2 T; with
+// G = L^T L (Cholesky), y = L x is Euclidean, where the apex is the midpoint plus sqrt(3)/2 |e| along
+// the normal of e toward p. `false` if the triangle is degenerate or G is not positive definite.
+inline bool metric_equilateral_apex(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Matrix3d& QT, Eigen::Vector3d& apex)
+{
+  const Eigen::Vector3d e = b - a;
+  const double len = e.norm();
+  if(!(len > 0)) return false;
+  const Eigen::Vector3d t1 = e / len;
+  Eigen::Vector3d t2 = (p - a) - (p - a).dot(t1) * t1;
+  if(!(t2.norm() > 1e-12 * len)) return false;
+  t2.normalize();
+  Eigen::Matrix<double, 3, 2> T;
+  T.col(0) = t1;
+  T.col(1) = t2;
+  const Eigen::Matrix<double, 3, 2> QTT = QT * T;
+  const Eigen::Matrix2d G = QTT.transpose() * QTT;
+  const Eigen::LLT<Eigen::Matrix2d> llt(G);
+  if(llt.info() != Eigen::Success) return false;
+  const Eigen::Matrix2d L = llt.matrixU();  // G = L^T L
+  // a at the origin of the frame: b at (len, 0), p at (., > 0)
+  const Eigen::Vector2d yb = L * Eigen::Vector2d(len, 0), yp = L * Eigen::Vector2d((p - a).dot(t1), (p - a).dot(t2));
+  Eigen::Vector2d n(-yb.y(), yb.x());  // normal of (a, b) in y
+  if(n.dot(yp) < 0) n = -n;
+  const double ly = yb.norm();
+  if(!(ly > 0)) return false;
+  const Eigen::Vector2d y_apex = 0.5 * yb + (0.5 * std::sqrt(3.0) * ly / n.norm()) * n;
+  const Eigen::Vector2d x = L.triangularView<Eigen::Upper>().solve(y_apex);
+  apex = a + T * x;
+  return apex.allFinite();
+}
 
 // `candidate` may replace `current`: it has fewer inverted triangles, or as many and none of G_min,
 // theta_min, theta_avg, %<30 worse and a larger sum of G. Since every operation replaces a fixed number
@@ -269,7 +304,9 @@ public:
   // usual distance across it, a thin triangle the centroid moves of relocation_pass() do not cure: CGAL's
   // three_peaks at 2000 vertices, theta_min 20.6 degrees). Targets: for each triangle (v, a, b) of the
   // ring whose smallest angle is the ring's, the apex of the equilateral triangle on (a, b) on v's side
-  // and the points 1/2 and 1/4 of the way there, projected onto the input. A move is accepted when it
+  // and the points 1/2 and 1/4 of the way there, both the triangle equilateral in space and the one
+  // equilateral in the metric (the mean Q of v, a, b; metric_equilateral_apex()), projected onto the
+  // input. A move is accepted when it
   // makes no triangle of the ring inverted that was not, raises the ring's smallest angle and lowers
   // neither its G_min nor its count below 30 degrees (G_avg may drop a little: the smallest angle is what
   // this pass is for). Returns the number of vertices moved; 0 on an output without fixed vertices inside,
@@ -312,6 +349,11 @@ public:
         if(!(d.norm() > 0)) continue;
         const Eigen::Vector3d apex = m + (0.5 * std::sqrt(3.0) * len / d.norm()) * d;
         for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (apex - p));
+        // the same apex in the metric: equilateral for the triangle's mean Q, which is where an
+        // anisotropic metric wants v (the Euclidean apex is the same point when the metric is isotropic)
+        Eigen::Vector3d metric_apex;
+        if(metric_equilateral_apex(p, P(a), P(b), (Q(v) + Q(a) + Q(b)) / 3.0, metric_apex))
+          for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (metric_apex - p));
       }
       const Surface_point old_sp = m_out.surface_points[i];
       const Eigen::Matrix3d old_Q = m_Q[i];
