@@ -64,8 +64,8 @@ struct Surface_optimization_report {
  *   boundary's), one pass of *max-min angle relocation* (optimisation-based smoothing, Freitag and
  *   Plassmann 2000): each free vertex whose one-ring has an angle below 30 degrees in the metric tries the
  *   apex of the triangle equilateral on the edge opposite it in its worst triangles, in space and in the
- *   metric (the triangle's mean square root `Q`; the same point for an isotropic metric), and 1/2 and 1/4
- *   of the way to each, projected onto the input, and takes the target that raises the ring's smallest angle
+ *   metric (the triangle's mean square root `Q`; the same point for an isotropic metric), and 1/2, 1/4,
+ *   1/8 and 1/16 of the way to each, projected onto the input, and takes the target that raises the ring's smallest angle
  *   most without an inverted triangle, a lower G_min or more triangles below 30 degrees (a free vertex
  *   across a short edge between two fixed sites is otherwise left thin: CGAL's three_peaks at 2000
  *   vertices, theta_min 20.6 -> 30.6 degrees). An output without fixed vertices inside is optimised

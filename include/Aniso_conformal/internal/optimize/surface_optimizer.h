@@ -304,9 +304,9 @@ public:
   // usual distance across it, a thin triangle the centroid moves of relocation_pass() do not cure: CGAL's
   // three_peaks at 2000 vertices, theta_min 20.6 degrees). Targets: for each triangle (v, a, b) of the
   // ring whose smallest angle is the ring's, the apex of the equilateral triangle on (a, b) on v's side
-  // and the points 1/2 and 1/4 of the way there, both the triangle equilateral in space and the one
-  // equilateral in the metric (the mean Q of v, a, b; metric_equilateral_apex()), projected onto the
-  // input. A move is accepted when it
+  // and the points 1/2, 1/4, 1/8 and 1/16 of the way there, both the triangle equilateral in space and
+  // the one equilateral in the metric (the mean Q of v, a, b; metric_equilateral_apex()), projected onto
+  // the input (two obtuse triangles on one edge, the torus at stretch 30, need the short steps). A move is accepted when it
   // makes no triangle of the ring inverted that was not, raises the ring's smallest angle and lowers
   // neither its G_min nor its count below 30 degrees (G_avg may drop a little: the smallest angle is what
   // this pass is for). Returns the number of vertices moved; 0 on an output without fixed vertices inside,
@@ -348,12 +348,12 @@ public:
         Eigen::Vector3d d = (p - m) - (p - m).dot(e) / (len * len) * e;
         if(!(d.norm() > 0)) continue;
         const Eigen::Vector3d apex = m + (0.5 * std::sqrt(3.0) * len / d.norm()) * d;
-        for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (apex - p));
+        for(double step : {1.0, 0.5, 0.25, 0.125, 0.0625}) targets.push_back(p + step * (apex - p));
         // the same apex in the metric: equilateral for the triangle's mean Q, which is where an
         // anisotropic metric wants v (the Euclidean apex is the same point when the metric is isotropic)
         Eigen::Vector3d metric_apex;
         if(metric_equilateral_apex(p, P(a), P(b), (Q(v) + Q(a) + Q(b)) / 3.0, metric_apex))
-          for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (metric_apex - p));
+          for(double step : {1.0, 0.5, 0.25, 0.125, 0.0625}) targets.push_back(p + step * (metric_apex - p));
       }
       const Surface_point old_sp = m_out.surface_points[i];
       const Eigen::Matrix3d old_Q = m_Q[i];
