@@ -149,6 +149,42 @@ BOOST_AUTO_TEST_CASE(fig7_meets_the_quality_bar)
   check_quality_bar("Fig. 7", AC::make_analytic_metric_2(AC::Circular_metric()), 4000);
 }
 
+BOOST_AUTO_TEST_CASE(circular_field_beats_table2_with_the_surface_optimization)
+{
+  // issue 17's bar for the circular field: the paper's Table 2 figures (G_min 0.3771, G_avg 0.9068,
+  // theta_min 22.57, theta_avg 52.48, %<30 0.0187). With Surface_optimization::ALWAYS, whose second phase
+  // moves each vertex toward its ideal point in the metric and may lower a one-ring's G_min and smallest
+  // angle down to 0.6 and 35 degrees (or the mesh's, if higher) to raise its G: measured at 4000 vertices G_min 0.535, G_avg 0.923,
+  // theta_min 33.3, theta_avg 53.5, %<30 0 (first phase only: 0.481, 0.900, 30.2, 52.2, 0); at 2000
+  // G_avg 0.884 after the dual -> 0.908 (first phase only: 0.887), theta_min 31.5
+  const auto metric = AC::make_analytic_metric_2(AC::Circular_metric());
+  for(const std::size_t n : {std::size_t(2000), std::size_t(4000)}) {
+    AC::Remeshing_result r;
+    const auto out = remesh_plane(AC::make_square_background(metric, n), metric, r,
+                                  AC::parameters::number_of_vertices(n).surface_optimization(AC::Surface_optimization::ALWAYS));
+    BOOST_TEST_MESSAGE("circular field, " << n << " vertices: G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg
+                                          << " theta_min " << r.quality.theta_min << " theta_avg " << r.quality.theta_avg
+                                          << " %<30 " << r.quality.percent_below_30);
+    BOOST_TEST(out.points.size() == n);
+    BOOST_TEST(r.inverted_triangles == 0u);
+    BOOST_TEST(check_planar(out).corners_found == 4u);
+    // neither phase lowers G_min or theta_min nor adds a thin triangle to an output without inverted ones
+    BOOST_TEST(r.surface_optimization.inverted_before == 0u);
+    BOOST_TEST(r.quality.G_min >= r.surface_optimization.G_min_before);
+    BOOST_TEST(r.quality.theta_min >= r.surface_optimization.theta_min_before);
+    BOOST_TEST(r.quality.percent_below_30 <= r.surface_optimization.percent_below_30_before);
+    BOOST_TEST(r.quality.G_avg >= r.surface_optimization.G_avg_before + 0.015);
+    BOOST_TEST(r.quality.G_avg >= 0.90);
+    BOOST_TEST(r.quality.theta_min >= 30.0);
+    if(n == 4000) {
+      BOOST_TEST(r.quality.G_min >= 0.3771);
+      BOOST_TEST(r.quality.G_avg >= 0.9068 + 0.008);
+      BOOST_TEST(r.quality.theta_avg >= 52.48 + 0.5);
+      BOOST_TEST(r.quality.percent_below_30 <= 0.0187);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(same_seed_same_output_bit_for_bit)
 {
   const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
@@ -507,8 +543,9 @@ BOOST_AUTO_TEST_CASE(colour_image_reaches_the_angle_bar_with_the_surface_optimiz
 {
   // Fig. 8 (issue 17 item 4, bar theta_min >= 20 degrees, %<30 <= 0.5): the dual mesh's thin triangles
   // sit across colour edges (theta_min 1.7 degrees); Surface_optimization::ALWAYS, whose max-min angle
-  // pass then runs on every output, lifts them: measured theta_min 29.4, %<30 0.017, G_avg 0.879
-  // (without the angle pass everywhere: 24.1, 0.19)
+  // pass then runs on every output, lifts them, and its second phase (vertices toward their ideal point in
+  // the metric) raises G: measured theta_min 30.9, %<30 0, G_avg 0.909 (first phase only: 30.2, 0, 0.879;
+  // without the angle pass everywhere: 24.1, 0.19)
   const AC::IO::Image photo = AC::IO::read_image(data_dir + "/images/photo_chelsea_323.png");
   AC::Remeshing_result r;
   const auto out = remesh_plane(AC::make_image_background(photo), AC::Image_metric(photo, 0.1), r,
@@ -520,7 +557,7 @@ BOOST_AUTO_TEST_CASE(colour_image_reaches_the_angle_bar_with_the_surface_optimiz
   BOOST_TEST(r.surface_optimization.theta_min_before < 5.0);
   BOOST_TEST(r.quality.theta_min > 26.0);
   BOOST_TEST(r.quality.percent_below_30 < 0.1);
-  BOOST_TEST(r.quality.G_avg > 0.87);
+  BOOST_TEST(r.quality.G_avg > 0.895);
 }
 
 

@@ -318,7 +318,8 @@ BOOST_AUTO_TEST_CASE(unsmoothed_table2_field_reaches_the_angle_bar_with_the_surf
   // issue 17: the Table 2 cyclide's curvature field with its scales unsmoothed (stretch bound 29 reached
   // where a principal curvature vanishes), 2000 vertices, Surface_optimization::ALWAYS. The max-min angle
   // pass aims its targets at the apex equilateral in the metric, not only in space: measured theta_min
-  // 18.2 after the dual -> 30.74, %<30 0.275 -> 0 (with the apex in space only: 29.61 and 0.025)
+  // 18.2 after the dual -> 31.26, %<30 0.275 -> 0, G_avg 0.933 with the second phase (vertices toward their
+  // ideal point in the metric; first phase only: 30.74 and 0; with the apex in space only: 29.61 and 0.025)
   const AC::Input_surface s = AC::make_dupin_cyclide(180, 144);
   AC::Curvature_metric_options co;
   co.stretch_max = 29;
@@ -329,6 +330,9 @@ BOOST_AUTO_TEST_CASE(unsmoothed_table2_field_reaches_the_angle_bar_with_the_surf
   const AC::Remeshed_surface out =
       remesh_torus(s, metric, r, AC::parameters::number_of_vertices(std::size_t(2000)).surface_optimization(AC::Surface_optimization::ALWAYS));
   check_torus_output(out, 2000);
+  BOOST_TEST_MESSAGE("unsmoothed Table 2 field, 2000 vertices: G_min " << r.quality.G_min << " G_avg " << r.quality.G_avg
+                                                                     << " theta_min " << r.quality.theta_min << " %<30 "
+                                                                     << r.quality.percent_below_30);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.surface_optimization.ran);
   BOOST_TEST(r.surface_optimization.theta_min_before < 25.0);
@@ -338,41 +342,75 @@ BOOST_AUTO_TEST_CASE(unsmoothed_table2_field_reaches_the_angle_bar_with_the_surf
   BOOST_TEST(r.quality.stretch_max > 6.0);  // the anisotropy is realised (8.17 measured at the vertices)
 }
 
+// The torus (R = 2, r = 1) as a 240 x 80 grid, and its exact curvature metric at stretch 30 (what
+// benchmark/make_torus_metric.py writes as a metric file): at (u, v) the principal curvatures are 1 / r
+// along the tube (t_v) and cos v / (R + r cos v) around the axis (t_u); scales their square roots, the
+// smaller raised to the larger over 30. `exact_sqrt(p)` is the square root of that metric at the torus
+// point p (tangent only), to judge a mesh in the exact metric whatever metric remeshed it.
+namespace {
+struct Stretch_30_torus {
+  static constexpr double R = 2, r = 1, stretch = 30, pi = 3.14159265358979323846;
+  static void scales(double u, double v, Eigen::Vector3d& tu, Eigen::Vector3d& tv, double& s_u, double& s_v)
+  {
+    const double rho = R + r * std::cos(v);
+    tu = Eigen::Vector3d(-std::sin(u), std::cos(u), 0);
+    tv = Eigen::Vector3d(-std::sin(v) * std::cos(u), -std::sin(v) * std::sin(u), std::cos(v));
+    s_v = std::sqrt(1.0 / r);
+    s_u = std::sqrt(std::abs(std::cos(v) / rho));
+    const double big = std::max(s_v, s_u);
+    s_v = std::max(s_v, big / stretch);
+    s_u = std::max(s_u, big / stretch);
+  }
+  static Eigen::Matrix3d exact_sqrt(const Eigen::Vector3d& p)
+  {
+    const double u = std::atan2(p.y(), p.x()), v = std::atan2(p.z(), std::hypot(p.x(), p.y()) - R);
+    Eigen::Vector3d tu, tv;
+    double s_u, s_v;
+    scales(u, v, tu, tv, s_u, s_v);
+    return s_v * tv * tv.transpose() + s_u * tu * tu.transpose();
+  }
+  std::vector<Eigen::Matrix3d> tensors;  // the exact metric at the grid's vertices
+  AC::Input_surface surface;
+  Stretch_30_torus() : surface(make(tensors)) {}
+  static AC::Input_surface make(std::vector<Eigen::Matrix3d>& tensors)
+  {
+    const std::size_t nu = 240, nv = 80;
+    std::vector<Eigen::Vector3d> points;
+    std::vector<AC::Input_surface::Face> faces;
+    for(std::size_t j = 0; j < nv; ++j) {
+      const double v = 2 * pi * double(j) / double(nv);
+      for(std::size_t i = 0; i < nu; ++i) {
+        const double u = 2 * pi * double(i) / double(nu), rho = R + r * std::cos(v);
+        points.emplace_back(rho * std::cos(u), rho * std::sin(u), r * std::sin(v));
+        Eigen::Vector3d tu, tv;
+        double s_u, s_v;
+        scales(u, v, tu, tv, s_u, s_v);
+        tensors.push_back(s_v * s_v * tv * tv.transpose() + s_u * s_u * tu * tu.transpose());
+      }
+    }
+    for(std::size_t j = 0; j < nv; ++j)
+      for(std::size_t i = 0; i < nu; ++i) {
+        const std::size_t p = j * nu + i, q = j * nu + (i + 1) % nu, a = ((j + 1) % nv) * nu + (i + 1) % nu, b = ((j + 1) % nv) * nu + i;
+        faces.push_back({{p, q, a}});
+        faces.push_back({{p, a, b}});
+      }
+    return AC::Input_surface(points, faces);
+  }
+};
+} // namespace
+
 BOOST_AUTO_TEST_CASE(exact_stretch_30_torus_metric_meets_the_quality_bar)
 {
-  // issue 17's bar: a torus (R = 2, r = 1, a 240 x 80 grid) with its exact curvature metric at stretch 30
-  // (what benchmark/make_torus_metric.py writes as a metric file), 4000 vertices, Surface_optimization::ALWAYS:
-  // G_avg >= 0.90, theta_min >= 22.6, %<30 <= 0.02. Measured: G_avg 0.922, theta_min 30.3, %<30 0; with
-  // the max-min angle pass aimed at the apex equilateral in space only and 3 steps: theta_min 20.1, %<30
-  // 0.175; in the metric too, 3 steps: 20.1 and 0.037; the default REPAIR: 9.4 and 0.31
-  const double R = 2, r = 1, stretch = 30, pi = 3.14159265358979323846;
-  const std::size_t nu = 240, nv = 80;
-  std::vector<Eigen::Vector3d> points;
-  std::vector<Eigen::Matrix3d> tensors;
-  std::vector<AC::Input_surface::Face> faces;
-  for(std::size_t j = 0; j < nv; ++j) {
-    const double v = 2 * pi * double(j) / double(nv);
-    for(std::size_t i = 0; i < nu; ++i) {
-      const double u = 2 * pi * double(i) / double(nu), rho = R + r * std::cos(v);
-      points.emplace_back(rho * std::cos(u), rho * std::sin(u), r * std::sin(v));
-      const Eigen::Vector3d tu(-std::sin(u), std::cos(u), 0), tv(-std::sin(v) * std::cos(u), -std::sin(v) * std::sin(u), std::cos(v));
-      double s_v = std::sqrt(1.0 / r), s_u = std::sqrt(std::abs(std::cos(v) / rho));
-      const double big = std::max(s_v, s_u);
-      s_v = std::max(s_v, big / stretch);
-      s_u = std::max(s_u, big / stretch);
-      tensors.push_back(s_v * s_v * tv * tv.transpose() + s_u * s_u * tu * tu.transpose());
-    }
-  }
-  for(std::size_t j = 0; j < nv; ++j)
-    for(std::size_t i = 0; i < nu; ++i) {
-      const std::size_t p = j * nu + i, q = j * nu + (i + 1) % nu, a = ((j + 1) % nv) * nu + (i + 1) % nu, b = ((j + 1) % nv) * nu + i;
-      faces.push_back({{p, q, a}});
-      faces.push_back({{p, a, b}});
-    }
-  const AC::Input_surface s(points, faces);
-  BOOST_REQUIRE(s.genus() == 1);
+  // issue 17's bar: the stretch-30 torus with its exact curvature metric (a metric file's tensors),
+  // 4000 vertices, Surface_optimization::ALWAYS: G_avg >= 0.90, theta_min >= 22.6, %<30 <= 0.02. Measured:
+  // G_avg 0.937, theta_min 30.3, %<30 0 (the tool on make_torus_metric.py's files: 0.939, 32.2; before the
+  // second phase of ALWAYS, which moves vertices toward their ideal point in the metric: 0.922, 30.3); with the max-min angle pass aimed at the apex
+  // equilateral in space only and 3 steps: theta_min 20.1, %<30 0.175; in the metric too, 3 steps: 20.1
+  // and 0.037; the default REPAIR: 9.4 and 0.31
+  const Stretch_30_torus t;
+  BOOST_REQUIRE(t.surface.genus() == 1);
   AC::Remeshing_result r_;
-  const AC::Remeshed_surface out = remesh_torus(s, AC::Tensor_field_metric(tensors), r_,
+  const AC::Remeshed_surface out = remesh_torus(t.surface, AC::Tensor_field_metric(t.tensors), r_,
                                                 AC::parameters::number_of_vertices(std::size_t(4000))
                                                   .surface_optimization(AC::Surface_optimization::ALWAYS));
   check_torus_output(out, 4000);
@@ -383,6 +421,35 @@ BOOST_AUTO_TEST_CASE(exact_stretch_30_torus_metric_meets_the_quality_bar)
   BOOST_TEST(r_.quality.theta_min >= 22.6);
   BOOST_TEST(r_.quality.percent_below_30 <= 0.02);
   BOOST_TEST(r_.quality.stretch_max > 10.0);  // the stretch is realised, not smoothed away
+}
+
+BOOST_AUTO_TEST_CASE(own_curvature_metric_at_bound_30_meets_the_bar_in_the_exact_metric)
+{
+  // issue 17's bar, second half: the same torus remeshed with the library's own Curvature_metric at
+  // stretch_max 30, judged in the exact metric. With its scales unsmoothed (scale_smoothing_iterations =
+  // 0, the stretch-keeping setting; directions smoothed as by default) and Surface_optimization::ALWAYS:
+  // measured in the exact metric G_avg 0.938, theta_min 30.5, %<30 0 (the tool, same settings: 0.938, 30.2). With the
+  // default 10 rounds of scale smoothing the field's stretch at the output is at most 3.7 and the mesh,
+  // judged in the exact metric, has theta_min 21.0 and 0.44 % below 30 degrees (bar not met)
+  const Stretch_30_torus t;
+  AC::Curvature_metric_options co;
+  co.stretch_max = 30;
+  co.scale_smoothing_iterations = 0;
+  const AC::Curvature_metric metric(t.surface, co);
+  AC::Remeshing_result r_;
+  const AC::Remeshed_surface out = remesh_torus(t.surface, metric, r_,
+                                                AC::parameters::number_of_vertices(std::size_t(4000))
+                                                  .surface_optimization(AC::Surface_optimization::ALWAYS));
+  check_torus_output(out, 4000);
+  std::vector<Eigen::Matrix3d> exact(out.points.size());
+  for(std::size_t i = 0; i < out.points.size(); ++i) exact[i] = Stretch_30_torus::exact_sqrt(out.points[i]);
+  const AC::Quality_report q = AC::compute_mesh_quality(out.points, out.faces, exact);
+  BOOST_TEST_MESSAGE("stretch-30 torus, own curvature metric, judged in the exact metric: G_min "
+                     << q.G_min << " G_avg " << q.G_avg << " theta_min " << q.theta_min << " %<30 " << q.percent_below_30);
+  BOOST_TEST(r_.inverted_triangles == 0u);
+  BOOST_TEST(q.G_avg >= 0.90);
+  BOOST_TEST(q.theta_min >= 22.6);
+  BOOST_TEST(q.percent_below_30 <= 0.02);
 }
 
 BOOST_AUTO_TEST_CASE(high_stretch_embeds_with_intrinsic_flips)

@@ -37,6 +37,11 @@ constexpr Parametric_domain parametric_domain = Parametric_domain::AUTOMATIC;
 constexpr Planar_boundary planar_boundary = Planar_boundary::AUTOMATIC;  // stage 3 on a disk
 constexpr Surface_optimization surface_optimization = Surface_optimization::REPAIR;
 constexpr std::size_t surface_optimization_rounds = 5;  // bound on the rounds of the surface optimisation
+// Surface_optimization::ALWAYS, its second phase (Surface_optimizer::relocation_pass(true)): a move may lower
+// the smallest G and the smallest angle of a one-ring down to these floors, or to the mesh's G_min and
+// theta_min when these are higher, if it raises the ring's sum of G
+constexpr double relaxed_G_floor = 0.6;
+constexpr double relaxed_angle_floor = 35;  // degrees
 } // namespace defaults
 
 #define ANISO_CONFORMAL_PARAMETER_GETTER(NAME, TAG, TYPE)                                                          \

@@ -10,6 +10,7 @@
 #include <Aniso_conformal/Surface_point.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/internal/optimize/triangle_orientation.h>
+#include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/tensor.h>
 
 #include <CGAL/Simple_cartesian.h>
@@ -125,6 +126,21 @@ inline bool improves(const Local_score& candidate, const Local_score& current)
          candidate.G_sum > current.G_sum * (1 + 1e-12);
 }
 
+// `candidate` may replace `current` in the second phase of Surface_optimization::ALWAYS: it has fewer
+// inverted triangles, or as many, a larger sum of G, no more triangles below 30 degrees, and G_min and the
+// smallest angle no lower than `G_floor` and `angle_floor` where they were above them, no lower than they
+// were otherwise. With floors at least the mesh's G_min and theta_min (optimize_surface_mesh()), neither
+// of these drops, %<30 never grows, G_sum strictly increases (no cycle); theta_avg may drop (it is not
+// protected here).
+inline bool improves_above_floors(const Local_score& candidate, const Local_score& current, double G_floor,
+                                  double angle_floor)
+{
+  if(candidate.inverted != current.inverted) return candidate.inverted < current.inverted;
+  return candidate.G_min >= std::min(current.G_min, G_floor) &&
+         candidate.angle_min >= std::min(current.angle_min, angle_floor) && candidate.below_30 <= current.below_30 &&
+         candidate.G_sum > current.G_sum * (1 + 1e-12);
+}
+
 // the optimiser's state: the mesh's connectivity in a Surface_mesh whose vertex i is output vertex i,
 // and per vertex its position, its point on the input, the square root of the metric there and whether
 // it is fixed (on the output's boundary)
@@ -234,8 +250,11 @@ public:
   }
 
   // one pass of relocation of every free vertex toward the metric-weighted centroid of its one-ring,
-  // projected onto the input; returns the number of vertices moved
-  std::size_t relocation_pass()
+  // projected onto the input; returns the number of vertices moved. `relaxed` (the second phase of
+  // Surface_optimization::ALWAYS): the vertex first tries its metric ideal point (metric_ideal_point(), and
+  // 1/2 and 1/4 of the way to it), and moves are judged by improves_above_floors() with `G_floor` and
+  // `angle_floor` (degrees)
+  std::size_t relocation_pass(bool relaxed = false, double G_floor = 0, double angle_floor = 0)
   {
     std::size_t moved = 0;
     std::vector<F> ring;
@@ -261,6 +280,9 @@ public:
       }
       std::vector<Eigen::Vector3d> targets;
       const Eigen::Vector3d p = P(v);
+      Eigen::Vector3d ideal;
+      if(relaxed && metric_ideal_point(v, ring, ideal))
+        for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (ideal - p));
       if(weight > 0 && centroid.allFinite())
         for(double step : {1.0, 0.5, 0.25}) targets.push_back(p + step * (centroid / weight - p));
       if(neighbours > 0) targets.push_back(mean / double(neighbours));
@@ -275,7 +297,9 @@ public:
       const Eigen::Vector3d old_normal = interpolated_normal(old_sp);
       for(const Eigen::Vector3d& y : targets) {
         if(!move_onto_input(i, y, old_normal)) continue;
-        if(improves(ring_score(ring), before)) {
+        const Local_score after = ring_score(ring);
+        if(relaxed ? improves_above_floors(after, before, G_floor, angle_floor)
+                   : improves(after, before)) {
           ++moved;
           break;
         }
@@ -406,6 +430,27 @@ private:
     t.inverted = triangle_is_inverted(m_surface, P(a), P(b), P(c), m_out.surface_points[a.idx()],
                                       m_out.surface_points[b.idx()], m_out.surface_points[c.idx()], m_side);
     return t;
+  }
+
+  // the mean, over the triangles (v, a, b) of v's one-ring `ring`, of the apex of the triangle on (a, b)
+  // equilateral in that triangle's mean metric (metric_equilateral_apex()): where each triangle of the
+  // ring wants v (the "ideal point" of the smoothing of Vartziotis and Wipper's GETMe, here in the
+  // metric); `false` if one of them is degenerate
+  bool metric_ideal_point(V v, const std::vector<F>& ring, Eigen::Vector3d& ideal) const
+  {
+    ideal = Eigen::Vector3d::Zero();
+    for(F f : ring) {
+      const auto t = corners(f);
+      // the edge (a, b) opposite v
+      const int k = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+      const V a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+      Eigen::Vector3d apex;
+      if(!metric_equilateral_apex(P(v), P(a), P(b), (Q(v) + Q(a) + Q(b)) / 3.0, apex)) return false;
+      ideal += apex;
+    }
+    if(ring.empty()) return false;
+    ideal /= double(ring.size());
+    return ideal.allFinite();
   }
 
   Local_score ring_score(const std::vector<F>& ring) const
