@@ -5,8 +5,8 @@
 // with the image metric of eq. 9, 3000 output vertices, the surface optimisation on the output
 // (Surface_optimization::ALWAYS, as for Fig. 8). The paper used s = 0.5 on its image; on this
 // high-contrast slice (metric stretch up to 36 at s = 0.5, on edges a pixel or two wide) the dual mesh
-// at s = 0.5 has inverted triangles, which the surface optimisation repairs, but many thin triangles are
-// left (theta_min 4.8 degrees, 5.7 % below 30), so the example uses s = 0.2 (pass another as 4th argument).
+// at s = 0.5 has inverted triangles, which the surface optimisation repairs, but thin triangles are
+// left (theta_min 8.9 degrees, 1.2 % below 30), so the example uses s = 0.2 (pass another as 4th argument).
 // Usage: fig9_ct_image [output_folder [number_of_vertices [image [s]]]]
 
 #include "figure_common.h"

@@ -30,7 +30,8 @@ struct Surface_optimization_report {
   std::size_t rounds = 0;             ///< rounds made (flip passes then one relocation pass, and the max-min angle pass, each)
   std::size_t flips = 0;              ///< metric-Delaunay (or repairing) edge flips
   std::size_t relocations = 0;        ///< accepted vertex moves along the input (both relocation passes)
-  std::size_t fixed_vertices = 0;     ///< boundary vertices and the mesh's fixed sites (`Remeshed_surface::fixed_vertices`: boundary sites, kept corners), never moved
+  std::size_t fixed_vertices = 0;     ///< boundary vertices and the mesh's fixed sites (`Remeshed_surface::fixed_vertices`: boundary sites, kept corners), never moved (less the sliding ones)
+  std::size_t sliding_vertices = 0;   ///< boundary vertices free to slide along a straight piece of the input's boundary (with `angle_pass_everywhere` only)
   std::size_t inverted_before = 0;    ///< inverted or degenerate triangles before the stage
   std::size_t inverted_after = 0;     ///< the same after it
   double G_min_before = 0;            ///< quality in the metric before the stage (see `Quality_report`)
@@ -103,8 +104,18 @@ struct Surface_optimization_report {
  * may lower those figures. A round that changes nothing ends the first phase. (The second phase's
  * acceptance is the looser one above.)
  *
+ * With `angle_pass_everywhere` (as `ALWAYS` asks) a boundary vertex whose two boundary
+ * neighbours are on one straight line with it (to 1e-12 relative: not a corner, not a curved boundary)
+ * and that lies on an edge of the input's boundary *slides*: its targets are projected onto that line
+ * and kept within 90 % of the way to each neighbour, and a move is taken only if it lands on an input
+ * boundary edge within 1e-9 of the diagonal of that line; the output's boundary as a set, so its area in
+ * the plane, does not change (images at 3000 vertices: 189 boundary vertices, 185 sliding; CT slice at
+ * s = 0.2: theta_min 22.9 -> 29.4, G_avg 0.924 -> 0.926; Fig. 8: G_avg 0.909 -> 0.911; circular field at 4000:
+ * 0.923 -> 0.924).
+ *
  * Kept: the number of vertices, the topology (flips keep the genus and the boundary; an edge already
- * present is never created), the boundary vertices and the first `mesh.fixed_vertices` vertices (the CVT's fixed sites: the input's corners
+ * present is never created), the boundary vertices (but the sliding ones above, which stay on the
+ * input's boundary) and the first `mesh.fixed_vertices` vertices (the CVT's fixed sites: the input's corners
  * and crease sites; fixed), the edges of `mesh.kept_edges` (the creases' output edges: never flipped), every vertex on the input (moved vertices get
  * their new `Surface_point`, planar ones keep z = 0). Faces are rewritten only if an edge was flipped
  * (the same triangles in the same order otherwise). Time O(rounds * (E + V log F)), serial (a user's
@@ -137,6 +148,7 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
   if(!opt.build()) return report;
   report.ran = true;
   report.fixed_vertices = opt.fixed_vertices();
+  report.sliding_vertices = opt.sliding_vertices();
   auto count_inverted = [&]() {
     std::size_t n = 0;
     for(const auto& f : mesh.faces)

@@ -79,7 +79,7 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * `refinement` (the background refined for the requested
  * size: vertices before and after, splits, the output's and the longest edge length in the metric);
  * `edge_adjustment` (flips, splits, rounds, repairs); `surface_optimization`, only if that stage ran
- * (`Surface_optimization_report`: rounds, flips, relocations, fixed vertices, inverted triangles and
+ * (`Surface_optimization_report`: rounds, flips, relocations, fixed and sliding vertices, inverted triangles and
  * G_min, G_avg, theta_min, %<30 before and after it);
  * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range,
  * and the domain's own figures from `r.domain_diagnostics`, written generically: a scalar, a vector or a
@@ -179,6 +179,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                                {"flips", so.flips},
                                {"relocations", so.relocations},
                                {"fixed_vertices", so.fixed_vertices},
+                               {"sliding_vertices", so.sliding_vertices},
                                {"inverted_before", so.inverted_before},
                                {"inverted_after", so.inverted_after},
                                {"G_min_before", report_number(so.G_min_before)},

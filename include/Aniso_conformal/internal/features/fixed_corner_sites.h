@@ -33,6 +33,14 @@ struct Corner_site {
   int face = -1;
   int corner = 0;
   Point site;
+
+  // the site's location on the background: exactly its corner (barycentric (1, 0, 0) up to the order)
+  void background_location(int& f, Eigen::Vector3d& bary) const
+  {
+    f = face;
+    bary = Eigen::Vector3d::Zero();
+    bary[corner] = 1.0;
+  }
 };
 
 // The background halfedge leaving the input vertex `v` (a vertex of `itri` with the same index: the
@@ -166,9 +174,7 @@ public:
   bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const
   {
     if(i < m_corners.size()) {
-      face = m_corners[i].face;
-      bary = Eigen::Vector3d::Zero();
-      bary[m_corners[i].corner] = 1.0;
+      m_corners[i].background_location(face, bary);
       return true;
     }
     return Traits::background_location(i, site, face, bary);
@@ -227,9 +233,7 @@ public:
   {
     const std::size_t nb = Traits::number_of_fixed_sites();
     if(i >= nb && i < nb + m_sites.size()) {
-      face = m_sites[i - nb].face;
-      bary = Eigen::Vector3d::Zero();
-      bary[m_sites[i - nb].corner] = 1.0;
+      m_sites[i - nb].background_location(face, bary);
       return true;
     }
     return Traits::background_location(i, site, face, bary);

@@ -9,6 +9,7 @@
 #include <Aniso_conformal/Stage.h>
 #include <Aniso_conformal/Surface_point.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/internal/optimize/local_score.h>
 #include <Aniso_conformal/internal/optimize/triangle_orientation.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/tensor.h>
@@ -17,13 +18,13 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 // The final optimisation of the output on the input surface, in the metric (optimize_surface_mesh()):
@@ -33,113 +34,6 @@
 
 namespace Aniso_conformal {
 namespace internal {
-
-// the figures of one triangle in the metric, computed exactly as compute_mesh_quality() does (Q_T the
-// mean of the corners' square roots, in the same order), so that what the optimiser accepts is what the
-// report measures
-struct Triangle_figures {
-  double G = 0;               // 2 sqrt(3) S / (p h)
-  double smallest_angle = 0;  // degrees
-  double area = 0;            // in the metric
-  bool inverted = false;      // triangle_is_inverted()
-};
-
-inline Triangle_figures triangle_figures(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                                         const Eigen::Matrix3d& Qa, const Eigen::Matrix3d& Qb, const Eigen::Matrix3d& Qc)
-{
-  const double rad = 180.0 / 3.14159265358979323846;
-  const Eigen::Matrix3d QT = (Qa + Qb + Qc) / 3.0;
-  const std::array<Eigen::Vector3d, 3> p = {{QT * a, QT * b, QT * c}};
-  std::array<double, 3> l;
-  for(int k = 0; k < 3; ++k) l[k] = (p[(k + 1) % 3] - p[k]).norm();
-  Triangle_figures t;
-  t.area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-  const double half_perimeter = 0.5 * (l[0] + l[1] + l[2]);
-  const double h = std::max({l[0], l[1], l[2]});
-  t.G = (half_perimeter > 0 && h > 0) ? 2 * std::sqrt(3.0) * t.area / (half_perimeter * h) : 0.0;
-  t.smallest_angle = 1e300;
-  for(int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-    t.smallest_angle = std::min(t.smallest_angle, std::atan2(u.cross(v).norm(), u.dot(v)) * rad);
-  }
-  return t;
-}
-
-// the figures of the quality report over a few triangles (those an operation replaces or moves)
-struct Local_score {
-  std::size_t inverted = 0, below_30 = 0;
-  double G_min = 1e300, angle_min = 1e300, G_sum = 0, angle_sum = 0;
-  void add(const Triangle_figures& t)
-  {
-    inverted += t.inverted ? 1 : 0;
-    below_30 += t.smallest_angle < 30 ? 1 : 0;
-    G_min = std::min(G_min, t.G);
-    angle_min = std::min(angle_min, t.smallest_angle);
-    G_sum += t.G;
-    angle_sum += t.smallest_angle;
-  }
-};
-
-// The apex `x` of the triangle (a, b, x) equilateral in the metric `QT^2`, in the plane of (p, a, b),
-// on p's side of (a, b): in the plane's orthonormal frame the metric is the 2x2 G = T^T QT^2 T; with
-// G = L^T L (Cholesky), y = L x is Euclidean, where the apex is the midpoint plus sqrt(3)/2 |e| along
-// the normal of e toward p. `false` if the triangle is degenerate or G is not positive definite.
-inline bool metric_equilateral_apex(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Matrix3d& QT, Eigen::Vector3d& apex)
-{
-  const Eigen::Vector3d e = b - a;
-  const double len = e.norm();
-  if(!(len > 0)) return false;
-  const Eigen::Vector3d t1 = e / len;
-  Eigen::Vector3d t2 = (p - a) - (p - a).dot(t1) * t1;
-  if(!(t2.norm() > 1e-12 * len)) return false;
-  t2.normalize();
-  Eigen::Matrix<double, 3, 2> T;
-  T.col(0) = t1;
-  T.col(1) = t2;
-  const Eigen::Matrix<double, 3, 2> QTT = QT * T;
-  const Eigen::Matrix2d G = QTT.transpose() * QTT;
-  const Eigen::LLT<Eigen::Matrix2d> llt(G);
-  if(llt.info() != Eigen::Success) return false;
-  const Eigen::Matrix2d L = llt.matrixU();  // G = L^T L
-  // a at the origin of the frame: b at (len, 0), p at (., > 0)
-  const Eigen::Vector2d yb = L * Eigen::Vector2d(len, 0), yp = L * Eigen::Vector2d((p - a).dot(t1), (p - a).dot(t2));
-  Eigen::Vector2d n(-yb.y(), yb.x());  // normal of (a, b) in y
-  if(n.dot(yp) < 0) n = -n;
-  const double ly = yb.norm();
-  if(!(ly > 0)) return false;
-  const Eigen::Vector2d y_apex = 0.5 * yb + (0.5 * std::sqrt(3.0) * ly / n.norm()) * n;
-  const Eigen::Vector2d x = L.triangularView<Eigen::Upper>().solve(y_apex);
-  apex = a + T * x;
-  return apex.allFinite();
-}
-
-// `candidate` may replace `current`: it has fewer inverted triangles, or as many and none of G_min,
-// theta_min, theta_avg, %<30 worse and a larger sum of G. Since every operation replaces a fixed number
-// of triangles, none of the report's G_min, G_avg, theta_min, theta_avg, %<30 can then get worse (up to
-// the rounding of the report's sums), and G_sum strictly increasing rules out cycles.
-inline bool improves(const Local_score& candidate, const Local_score& current)
-{
-  if(candidate.inverted != current.inverted) return candidate.inverted < current.inverted;
-  return candidate.G_min >= current.G_min && candidate.angle_min >= current.angle_min &&
-         candidate.below_30 <= current.below_30 && candidate.angle_sum >= current.angle_sum &&
-         candidate.G_sum > current.G_sum * (1 + 1e-12);
-}
-
-// `candidate` may replace `current` in the second phase of Surface_optimization::ALWAYS: it has fewer
-// inverted triangles, or as many, a larger sum of G, no more triangles below 30 degrees, and G_min and the
-// smallest angle no lower than `G_floor` and `angle_floor` where they were above them, no lower than they
-// were otherwise. With floors at least the mesh's G_min and theta_min (optimize_surface_mesh()), neither
-// of these drops, %<30 never grows, G_sum strictly increases (no cycle); theta_avg may drop (it is not
-// protected here).
-inline bool improves_above_floors(const Local_score& candidate, const Local_score& current, double G_floor,
-                                  double angle_floor)
-{
-  if(candidate.inverted != current.inverted) return candidate.inverted < current.inverted;
-  return candidate.G_min >= std::min(current.G_min, G_floor) &&
-         candidate.angle_min >= std::min(current.angle_min, angle_floor) && candidate.below_30 <= current.below_30 &&
-         candidate.G_sum > current.G_sum * (1 + 1e-12);
-}
 
 // the optimiser's state: the mesh's connectivity in a Surface_mesh whose vertex i is output vertex i,
 // and per vertex its position, its point on the input, the square root of the metric there and whether
@@ -152,7 +46,9 @@ public:
   typedef Mesh::Halfedge_index H;
   typedef Mesh::Face_index F;
 
-  // `angle_pass_everywhere`: angle_pass() runs on every output, not only on one with fixed vertices inside
+  // `angle_pass_everywhere` (Surface_optimization::ALWAYS): angle_pass() runs on every output, not only on
+  // one with fixed vertices inside, and boundary vertices on a straight piece of the input's boundary may
+  // slide along it (slides())
   Surface_optimizer(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out,
                     bool angle_pass_everywhere = false)
     : m_surface(surface), m_metric(metric), m_out(out), m_side(planar_side(surface)), m_angle_pass_everywhere(angle_pass_everywhere)
@@ -179,11 +75,16 @@ public:
     m_fixed.assign(n, 0);
     for(V v : m_mesh.vertices())
       if(m_mesh.is_isolated(v) || m_mesh.is_border(v, false) || std::size_t(v.idx()) < m_out.fixed_vertices) m_fixed[v.idx()] = 1;
+    if(m_angle_pass_everywhere) find_sliding_vertices();
     return true;
   }
 
+  // the number of boundary vertices that may slide along a straight piece of the input's boundary
+  std::size_t sliding_vertices() const { return m_sliding; }
+
   const std::vector<Eigen::Matrix3d>& metric_square_roots() const { return m_Q; }
-  std::size_t fixed_vertices() const { return std::size_t(std::count(m_fixed.begin(), m_fixed.end(), 1)); }
+  // the vertices that never move (the sliding ones are not counted)
+  std::size_t fixed_vertices() const { return std::size_t(std::count(m_fixed.begin(), m_fixed.end(), 1)) - m_sliding; }
   double side() const { return m_side; }
 
   // one pass of metric-Delaunay flips over every edge; returns the number of flips
@@ -256,13 +157,8 @@ public:
   // `angle_floor` (degrees)
   std::size_t relocation_pass(bool relaxed = false, double G_floor = 0, double angle_floor = 0)
   {
-    std::size_t moved = 0;
-    std::vector<F> ring;
-    for(V v : m_mesh.vertices()) {
+    return for_each_movable_vertex([&](V v, const std::vector<F>& ring, const Local_score& before) {
       const std::size_t i = v.idx();
-      if(m_fixed[i]) continue;
-      one_ring(v, ring);
-      const Local_score before = ring_score(ring);
       // the centroid of the ring's triangles weighted by their area in the metric, and the plain mean of
       // the neighbours as a fallback
       Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
@@ -292,23 +188,16 @@ public:
         for(V u : CGAL::vertices_around_target(m_mesh.halfedge(v), m_mesh))
           for(double step : {0.5, 0.25}) targets.push_back(p + step * (P(u) - p));
       }
-      const Surface_point old_sp = m_out.surface_points[i];
-      const Eigen::Matrix3d old_Q = m_Q[i];
-      const Eigen::Vector3d old_normal = interpolated_normal(old_sp);
+      const Vertex_state old = state(i);
+      const Eigen::Vector3d old_normal = interpolated_normal(old.sp);
       for(const Eigen::Vector3d& y : targets) {
-        if(!move_onto_input(i, y, old_normal)) continue;
+        if(!try_move(v, y, old_normal)) continue;
         const Local_score after = ring_score(ring);
-        if(relaxed ? improves_above_floors(after, before, G_floor, angle_floor)
-                   : improves(after, before)) {
-          ++moved;
-          break;
-        }
-        m_out.surface_points[i] = old_sp;
-        m_out.points[i] = old_sp.position;
-        m_Q[i] = old_Q;
+        if(relaxed ? improves_above_floors(after, before, G_floor, angle_floor) : improves(after, before)) return true;
+        restore(i, old);
       }
-    }
-    return moved;
+      return false;
+    });
   }
 
   // whether the mesh has fixed vertices inside (corners and crease sites of the input's features, issue
@@ -339,67 +228,49 @@ public:
   // 24.1 -> 29.4 degrees after the other passes).
   std::size_t angle_pass()
   {
+    static constexpr double angle_pass_steps[] = {1.0, 0.5, 0.25, 0.125, 0.0625};  // of the way to each apex
     if(!m_angle_pass_checked) {
       m_angle_pass = m_angle_pass_everywhere || has_interior_fixed_vertices();
       m_angle_pass_checked = true;
     }
     if(!m_angle_pass) return 0;
-    std::size_t moved = 0;
-    std::vector<F> ring;
-    for(V v : m_mesh.vertices()) {
+    return for_each_movable_vertex([&](V v, const std::vector<F>& ring, const Local_score& before) {
       const std::size_t i = v.idx();
-      if(m_fixed[i]) continue;
-      one_ring(v, ring);
-      const Local_score before = ring_score(ring);
-      if(before.inverted > 0 || !(before.angle_min < 30)) continue;
+      if(before.inverted > 0 || !(before.angle_min < 30)) return false;
       const Eigen::Vector3d p = P(v);
       std::vector<Eigen::Vector3d> targets;
       for(F f : ring) {
         const auto t = corners(f);
         if(!(figures(t[0], t[1], t[2]).smallest_angle <= before.angle_min)) continue;
-        // the edge (a, b) opposite v
-        V a = t[0], b = t[1];
-        if(t[0] == v) {
-          a = t[1];
-          b = t[2];
-        } else if(t[1] == v) {
-          a = t[2];
-          b = t[0];
-        }
+        const auto [a, b] = opposite_edge(t, v);
         const Eigen::Vector3d m = 0.5 * (P(a) + P(b)), e = P(b) - P(a);
         const double len = e.norm();
         if(!(len > 0)) continue;
         Eigen::Vector3d d = (p - m) - (p - m).dot(e) / (len * len) * e;
         if(!(d.norm() > 0)) continue;
         const Eigen::Vector3d apex = m + (0.5 * std::sqrt(3.0) * len / d.norm()) * d;
-        for(double step : {1.0, 0.5, 0.25, 0.125, 0.0625}) targets.push_back(p + step * (apex - p));
+        for(double step : angle_pass_steps) targets.push_back(p + step * (apex - p));
         // the same apex in the metric: equilateral for the triangle's mean Q, which is where an
         // anisotropic metric wants v (the Euclidean apex is the same point when the metric is isotropic)
         Eigen::Vector3d metric_apex;
         if(metric_equilateral_apex(p, P(a), P(b), (Q(v) + Q(a) + Q(b)) / 3.0, metric_apex))
-          for(double step : {1.0, 0.5, 0.25, 0.125, 0.0625}) targets.push_back(p + step * (metric_apex - p));
+          for(double step : angle_pass_steps) targets.push_back(p + step * (metric_apex - p));
       }
-      const Surface_point old_sp = m_out.surface_points[i];
-      const Eigen::Matrix3d old_Q = m_Q[i];
-      const Eigen::Vector3d old_normal = interpolated_normal(old_sp);
+      const Vertex_state old = state(i);
+      const Eigen::Vector3d old_normal = interpolated_normal(old.sp);
       Local_score best = before;
-      Surface_point best_sp = old_sp;
-      Eigen::Matrix3d best_Q = old_Q;
+      Vertex_state best_state = old;
       for(const Eigen::Vector3d& y : targets) {
-        if(!move_onto_input(i, y, old_normal)) continue;
+        if(!try_move(v, y, old_normal)) continue;
         const Local_score s = ring_score(ring);
         if(s.inverted == 0 && s.angle_min > best.angle_min + 1e-9 && s.G_min >= before.G_min && s.below_30 <= before.below_30) {
           best = s;
-          best_sp = m_out.surface_points[i];
-          best_Q = m_Q[i];
+          best_state = state(i);
         }
       }
-      m_out.surface_points[i] = best_sp;
-      m_out.points[i] = best_sp.position;
-      m_Q[i] = best_Q;
-      if(best.angle_min > before.angle_min) ++moved;
-    }
-    return moved;
+      restore(i, best_state);
+      return best.angle_min > before.angle_min;
+    });
   }
 
   // writes the faces back into the output (positions and surface points are updated in place); the faces
@@ -415,6 +286,117 @@ public:
   }
 
 private:
+  // what a trial move of a vertex changes, to put it back
+  struct Vertex_state {
+    Surface_point sp;
+    Eigen::Matrix3d Q;
+  };
+  Vertex_state state(std::size_t i) const { return {m_out.surface_points[i], m_Q[i]}; }
+  void restore(std::size_t i, const Vertex_state& s)
+  {
+    m_out.surface_points[i] = s.sp;
+    m_out.points[i] = s.sp.position;
+    m_Q[i] = s.Q;
+  }
+
+  // calls `visit(v, ring, before)` for every vertex that may move (free, or sliding along the boundary)
+  // with its one-ring and the ring's score; `visit` tries its moves and returns whether v moved. Returns
+  // the number of vertices moved.
+  template <typename Visit>
+  std::size_t for_each_movable_vertex(Visit visit)
+  {
+    std::size_t moved = 0;
+    std::vector<F> ring;
+    for(V v : m_mesh.vertices()) {
+      const std::size_t i = v.idx();
+      if(m_fixed[i] && !slides(i)) continue;
+      one_ring(v, ring);
+      const Local_score before = ring_score(ring);
+      if(visit(v, static_cast<const std::vector<F>&>(ring), before)) ++moved;
+    }
+    return moved;
+  }
+
+  // whether boundary vertex `i` may slide along the input's boundary (find_sliding_vertices())
+  bool slides(std::size_t i) const { return !m_slide.empty() && m_slide[i]; }
+
+  // the output's boundary vertices that may slide along the input's boundary: those with their
+  // two boundary neighbours on a straight line through them (to 1e-12 of the edge lengths: a corner of
+  // the boundary, or a curved boundary, keeps its vertices fixed) and on an input boundary edge. A move
+  // keeps such a vertex on that line between its neighbours (try_move()), so the output's boundary, as a
+  // set, does not change (its area in the plane neither).
+  void find_sliding_vertices()
+  {
+    for(const auto& loop : m_surface.boundary_loops())
+      for(std::size_t k = 0; k < loop.size(); ++k) {
+        const std::size_t a = loop[k], b = loop[(k + 1) % loop.size()];
+        m_input_border.push_back({{std::min(a, b), std::max(a, b)}});
+      }
+    std::sort(m_input_border.begin(), m_input_border.end());
+    m_slide.assign(m_fixed.size(), 0);
+    m_sliding = 0;
+    for(V v : m_mesh.vertices()) {
+      const std::size_t i = v.idx();
+      if(m_mesh.is_isolated(v) || !m_mesh.is_border(v, false)) continue;
+      Eigen::Vector3d u, w;
+      if(!boundary_neighbours(v, u, w) || !on_input_border(m_out.surface_points[i])) continue;
+      const Eigen::Vector3d e1 = u - P(v), e2 = w - P(v);
+      if(!(e1.cross(e2).norm() <= 1e-12 * e1.norm() * e2.norm()) || !(e1.dot(e2) < 0)) continue;
+      m_slide[i] = 1;
+      ++m_sliding;
+    }
+  }
+
+  // the positions of the boundary neighbours of boundary vertex `v` (before and after it along the
+  // boundary); `false` if `v` is on the boundary more than once
+  bool boundary_neighbours(V v, Eigen::Vector3d& u, Eigen::Vector3d& w) const
+  {
+    const H h = m_mesh.halfedge(v);  // the border halfedge into v
+    if(!m_mesh.is_border(h)) return false;
+    std::size_t border = 0;
+    for(H g : CGAL::halfedges_around_target(h, m_mesh)) border += m_mesh.is_border(g) ? 1 : 0;
+    if(border != 1) return false;
+    u = P(m_mesh.source(h));
+    w = P(m_mesh.target(m_mesh.next(h)));
+    return true;
+  }
+
+  // whether `sp` lies on an edge of the input's boundary (a barycentric coordinate of at most 1e-12)
+  bool on_input_border(const Surface_point& sp) const
+  {
+    for(int j = 0; j < 3; ++j) {
+      if(!(std::abs(sp.barycentric[j]) <= 1e-12)) continue;
+      const std::size_t a = sp.vertices[(j + 1) % 3], b = sp.vertices[(j + 2) % 3];
+      if(std::binary_search(m_input_border.begin(), m_input_border.end(), std::array<std::size_t, 2>{{std::min(a, b), std::max(a, b)}}))
+        return true;
+    }
+    return false;
+  }
+
+  // moves vertex `v` toward `y` (move_onto_input()); a sliding vertex (slides()) goes instead to the
+  // projection of `y` onto the line through its boundary neighbours, kept within 90 % of the way to each,
+  // and the move is refused (nothing moved) unless it lands on an input boundary edge, at most 1e-9 of the
+  // input's diagonal from that line
+  bool try_move(V v, const Eigen::Vector3d& y, const Eigen::Vector3d& old_normal)
+  {
+    const std::size_t i = v.idx();
+    if(!slides(i)) return move_onto_input(i, y, old_normal);
+    Eigen::Vector3d u, w;
+    if(!boundary_neighbours(v, u, w)) return false;
+    const Eigen::Vector3d p = P(v), d = (w - u).normalized();
+    const double su = (u - p).dot(d), sw = (w - p).dot(d);  // su < 0 < sw
+    if(!(su < 0 && sw > 0) || !d.allFinite()) return false;
+    const double s_y = std::clamp((y - p).dot(d), 0.9 * su, 0.9 * sw);
+    const Eigen::Vector3d z = p + s_y * d;
+    const Vertex_state old = state(i);
+    if(!move_onto_input(i, z, old_normal)) return false;
+    if(on_input_border(m_out.surface_points[i]) &&
+       (m_out.points[i] - z).norm() <= 1e-9 * m_surface.bounding_box_diagonal())
+      return true;
+    restore(i, old);
+    return false;
+  }
+
   const Eigen::Vector3d& P(V v) const { return m_out.points[v.idx()]; }
   const Eigen::Matrix3d& Q(V v) const { return m_Q[v.idx()]; }
 
@@ -422,6 +404,13 @@ private:
   {
     const H h = m_mesh.halfedge(f);
     return {{m_mesh.source(h), m_mesh.target(h), m_mesh.target(m_mesh.next(h))}};
+  }
+
+  // the edge (a, b) of triangle `t` opposite its corner `v`, in the triangle's order (v, a, b)
+  static std::pair<V, V> opposite_edge(const std::array<V, 3>& t, V v)
+  {
+    const int k = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+    return {t[(k + 1) % 3], t[(k + 2) % 3]};
   }
 
   Triangle_figures figures(V a, V b, V c) const
@@ -441,9 +430,7 @@ private:
     ideal = Eigen::Vector3d::Zero();
     for(F f : ring) {
       const auto t = corners(f);
-      // the edge (a, b) opposite v
-      const int k = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-      const V a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+      const auto [a, b] = opposite_edge(t, v);
       Eigen::Vector3d apex;
       if(!metric_equilateral_apex(P(v), P(a), P(b), (Q(v) + Q(a) + Q(b)) / 3.0, apex)) return false;
       ideal += apex;
@@ -491,6 +478,9 @@ private:
   Mesh m_mesh;
   std::vector<Eigen::Matrix3d> m_Q;
   std::vector<char> m_fixed;
+  std::vector<char> m_slide;  // per vertex: slides along the input's boundary (find_sliding_vertices())
+  std::size_t m_sliding = 0;
+  std::vector<std::array<std::size_t, 2>> m_input_border;  // the input's boundary edges, sorted
   std::vector<std::array<std::size_t, 2>> m_kept;  // Remeshed_surface::kept_edges, sorted: never flipped
   bool m_angle_pass_everywhere;  // angle_pass() on every output
   bool m_flipped = false;
