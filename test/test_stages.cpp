@@ -29,6 +29,7 @@
 #include <Aniso_conformal/refine_background.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 
 #include "mesh_checks.h"
 
@@ -631,6 +632,38 @@ BOOST_AUTO_TEST_CASE(intrinsic_flips_and_splits_keep_the_mesh_valid)
   for(int o : out)
     if(std::abs(t.length(o) - 0.5 * len) < 1e-12) halves += t.length(o);
   BOOST_TEST(std::abs(halves - len) < 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(seam_edge_split_at_its_midpoint_keeps_the_flat_metric)
+{
+  // the split spherical_embedding() makes of a seam edge flattened onto (internal/intrinsic/midpoint_split.h):
+  // on a flat grid the halves and the two medians are the Euclidean lengths, the new vertex is on the
+  // seam halfway in parameter and at the midpoint of the input
+  const AC::Input_surface sq = grid_surface(3, 3, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  AC::Intrinsic_triangulation t(sq, AC::compute_metric_square_roots(sq, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(t);
+  const int loop[4] = {5, 6, 10, 9};  // the four interior vertices, a seam of 4 pieces
+  for(int k = 0; k < 4; ++k) t.set_seam_vertex(loop[k], 0, double(k), 4);
+  const int h = t.find_halfedge(5, 6);
+  BOOST_TEST_REQUIRE(h >= 0);
+  BOOST_TEST(t.is_seam_edge(h));
+  BOOST_TEST(t.twin(h) >= 0);
+  const AC::Surface_point sp = AC::internal::midpoint_surface_point(t, 5, 6);
+  const Eigen::Vector3d mid = 0.5 * (t.position(5) + t.position(6));
+  BOOST_TEST((sp.position - mid).norm() < 1e-15);
+  Eigen::Vector3d from_barycentric = Eigen::Vector3d::Zero();
+  for(int k = 0; k < 3; ++k) from_barycentric += sp.barycentric[k] * sq.points()[sp.vertices[std::size_t(k)]];
+  BOOST_TEST((from_barycentric - mid).norm() < 1e-15);
+  const int m = AC::internal::split_interior_edge_at_midpoint(t, h, sp);
+  t.validate(true);
+  BOOST_TEST(t.number_of_vertices() == 17u);
+  BOOST_TEST(t.seam(m) == 0);
+  BOOST_TEST(std::abs(t.seam_parameter(m) - 0.5) < 1e-15);
+  BOOST_TEST(t.is_seam_edge(t.find_halfedge(5, m)));
+  BOOST_TEST(t.is_seam_edge(t.find_halfedge(m, 6)));
+  for(int o : t.outgoing_halfedges(m))
+    BOOST_TEST(std::abs(t.length(o) - (t.position(t.head(o)) - mid).norm()) < 1e-14);
+  BOOST_TEST(triangle_inequality_everywhere(t));
 }
 
 // ----------------------------------------------------------------------- edge-length adjustment

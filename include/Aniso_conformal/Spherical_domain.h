@@ -50,17 +50,19 @@ struct Spherical_domain : internal::Domain_policy_base<Spherical_embedding, Sphe
   /// the site of background vertex `v` (a corner of the feature graph, fixed in the CVT): its image on the
   /// sphere (`face`, `corner`: where it is a corner of the background; the sphere does not need them)
   static Traits::Point corner_site(const Embedding& emb, int /*face*/, int /*corner*/, int v) { return emb.position[std::size_t(v)]; }
-  /// the angle distortion of the map (degrees)
+  /// the angle distortion of the map (degrees), and the seam splits of `spherical_embedding()`
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits&)
   {
     Domain_diagnostics d;
     d.add("angle_distortion_mean_degrees", emb.angle_distortion_mean,
           "mean over the corners of |chordal angle - adjusted angle|, degrees");
     d.add("angle_distortion_max_degrees", emb.angle_distortion_max, "largest |chordal angle - adjusted angle| over the corners, degrees");
-    char text[160];
+    d.add("seam_splits", double(emb.seam_splits), "seam edges of the holes' patches split after an attempt that flattened a triangle onto them", true);
+    char text[200];
     std::snprintf(text, sizeof(text), "angle distortion of the conformal map: mean %.3f deg, max %.3f deg", emb.angle_distortion_mean,
                   emb.angle_distortion_max);
     d.summary = text;
+    if(emb.seam_splits > 0) d.summary += "; " + std::to_string(emb.seam_splits) + " seam edges split (a triangle flattened onto a hole's loop)";
     return d;
   }
 };

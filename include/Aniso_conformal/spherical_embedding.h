@@ -9,13 +9,16 @@
 #include <Aniso_conformal/internal/conformal/euclidean_conformal_metric.h>
 #include <Aniso_conformal/internal/conformal/layout.h>
 #include <Aniso_conformal/internal/conformal/spherical_map.h>
+#include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 #include <Aniso_conformal/parameters.h>
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 /// \file spherical_embedding.h
@@ -44,6 +47,9 @@ struct Spherical_embedding {
   /// shape, and are judged on the sphere instead)
   std::size_t degenerate_triangles = 0;
   std::size_t flips = 0;                  ///< intrinsic Delaunay flips (the first pass on the whole surface, then the solve)
+  /// seam edges (between a hole's patch and the surface) split at their midpoints after an attempt whose
+  /// planar metric flattened a triangle onto them (0 when the first attempt embeds)
+  std::size_t seam_splits = 0;
   std::size_t centring_iterations = 0;    ///< iterations of the Moebius normalisation
   double centre_offset = 0;               ///< norm of the area centroid after the Moebius normalisation
   /// angle distortion of the map: |corner angle of the chordal triangle - corner angle with the adjusted
@@ -52,6 +58,83 @@ struct Spherical_embedding {
   double angle_distortion_max = 0;  ///< the same, maximum over all corners (degrees)
 };
 
+
+namespace internal {
+
+// one attempt of spherical_embedding() (its documentation gives the method); when it fails on triangles
+// flat in the planar metric and `obtuse_seams` is given, the seam edges facing an angle of at least 90
+// degrees in that metric (ends: tail, head) are put there first
+template <typename NamedParameters>
+Spherical_embedding spherical_embedding_once(Intrinsic_triangulation& itri, const NamedParameters& np,
+                                             std::vector<std::pair<int, int>>* obtuse_seams)
+{
+  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
+  internal::require_closed_surface(itri, "spherical_embedding()", "the sphere", [](int g) { return g == 0; }, "genus 0");
+
+  // ---- 1. intrinsic Delaunay flips on the whole surface (the solver's first pass, with every vertex
+  // fixed: no Newton step), so that some star is Delaunay with a margin; they keep the metric
+  Spherical_embedding emb;
+  {
+    Spherical_embedding delaunay;
+    internal::solve_euclidean_conformal_metric(itri, std::vector<char>(std::size_t(nv), 1), np, "spherical embedding", delaunay);
+    emb.flips = delaunay.flips;
+  }
+  emb.puncture = internal::choose_puncture(itri);
+  const int p = emb.puncture;
+
+  // ---- 2. the flat metric of the disk (the surface minus the open star of p), the inversion's data on p's link
+  std::vector<char> fixed(std::size_t(nv), 0), keep(std::size_t(nv), 0);
+  keep[std::size_t(p)] = 1;
+  const std::vector<double> fixed_u = internal::inversion_data(itri, p, fixed);
+  const std::size_t delaunay_flips = emb.flips;
+  internal::solve_euclidean_conformal_metric(itri, fixed, np, "spherical embedding", emb, &keep, &fixed_u);
+  emb.flips += delaunay_flips;
+  auto in_star = [&](int f) {
+    const auto& c = itri.face_vertices(std::size_t(f));
+    return c[0] == p || c[1] == p || c[2] == p;
+  };
+  // the solver counts every face; the star's (all corners fixed, in no angle sum that is solved) has
+  // lengths scaled by the inversion's data, which give it no shape in the plane: judged on the sphere
+  emb.degenerate_triangles = 0;
+  for(int f = 0; f < nf; ++f)
+    if(!in_star(f)) {
+      bool deg;
+      internal::corner_angles(internal::scaled_face_lengths(itri, f, emb.u), deg);
+      if(deg) ++emb.degenerate_triangles;
+    }
+  if(emb.degenerate_triangles > 0 && obtuse_seams)
+    for(int f = 0; f < nf; ++f) {
+      if(in_star(f)) continue;
+      const std::array<double, 3> l = internal::scaled_face_lengths(itri, f, emb.u);
+      for(int k = 0; k < 3; ++k)
+        if(itri.is_seam_edge(3 * f + k) && !(l[k] * l[k] < l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3]))
+          obtuse_seams->emplace_back(itri.tail(3 * f + k), itri.head(3 * f + k));
+    }
+  if(emb.degenerate_triangles > 0)
+    throw Convergence_failure("spherical embedding: " + std::to_string(emb.degenerate_triangles) +
+                                  " triangles are flat in the planar metric (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
+                              double(emb.degenerate_triangles));
+  // unfold the disk breadth-first (every face but the star of p), each vertex once
+  std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
+  for(int f = 0; f < nf; ++f) L[std::size_t(f)] = internal::scaled_face_lengths(itri, f, emb.u);
+  int f0 = 0;
+  while(in_star(f0)) ++f0;  // the star is not everything: the link is a simple cycle of length >= 3
+  std::vector<Eigen::Vector2d> uv(std::size_t(nv), Eigen::Vector2d::Zero());
+  std::vector<char> placed(std::size_t(nv), 0), done;
+  internal::unfold_breadth_first(itri, L, f0, Eigen::Vector2d(0, 0), Eigen::Vector2d(L[std::size_t(f0)][0], 0),
+                                 [&](int h) { return !in_star(Intrinsic_triangulation::face(itri.twin(h))); }, internal::third_point,
+                                 done, &uv, &placed);
+
+  // ---- 3. inverse stereographic projection, 4. Moebius normalisation
+  emb.position = internal::inverse_stereographic_projection(uv, p);
+  internal::centre_by_moebius_map(itri, emb);
+
+  // ---- checks, conformal factor and angle distortion
+  internal::check_spherical_layout_and_measure(itri, emb);
+  return emb;
+}
+
+} // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalStages
@@ -103,6 +186,15 @@ struct Spherical_embedding {
  * Checks: every chordal triangle is positively oriented seen from outside (`det(a, b, c) > 0`) and not
  * flat, and their spherical areas add up to `4 pi` (the map covers the sphere once).
  *
+ * Seams (the loops between the surface and the patches that close its holes, `remesh()`; issue 15) never
+ * flip, and the planar metric can flatten a triangle onto one (CGAL's ChineseDragon-10kv and lion,
+ * isotropic, at 2000 vertices: a vertex of a thin triangle along a loop scaled onto the seam edge). When an
+ * attempt fails so, the seam edges that face an angle of 90 degrees or more in that attempt's planar
+ * metric are split at their midpoints in the triangulation as it was given (the halves and the medians of
+ * its two triangles, the new vertex on the seam, `Spherical_embedding::seam_splits`) and all of the above
+ * is done again, at most 3 more times; `itri` then has these new vertices. A triangulation without seams,
+ * or one that embeds at the first attempt, is not touched.
+ *
  * `Spherical_embedding::angle_distortion_mean` and `angle_distortion_max` compare every corner angle of
  * the chordal triangles, those of the star of `p` included, with the one of `itri`'s lengths. Where the
  * Newton solve flipped an edge, `itri` holds its Ptolemy length, which keeps the conformal class but is
@@ -111,7 +203,7 @@ struct Spherical_embedding {
  *
  * \param itri a closed genus-0 triangulation with valid edge lengths (after `adjust_edge_lengths()`);
  *        its edges may be flipped (those of the puncture's star only by the first, metric-preserving,
- *        Delaunay pass); its vertices are not changed
+ *        Delaunay pass); its vertices are not changed, but seam edges may be split (above)
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
  *        (default `1e-9`), `max_flips_per_edge` (default 50), `visitor`
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`)
@@ -124,62 +216,41 @@ struct Spherical_embedding {
 template <typename NamedParameters = parameters::Default_named_parameters>
 Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const NamedParameters& np = parameters::default_values())
 {
-  const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
-  internal::require_closed_surface(itri, "spherical_embedding()", "the sphere", [](int g) { return g == 0; }, "genus 0");
-
-  // ---- 1. intrinsic Delaunay flips on the whole surface (the solver's first pass, with every vertex
-  // fixed: no Newton step), so that some star is Delaunay with a margin; they keep the metric
-  Spherical_embedding emb;
-  {
-    Spherical_embedding delaunay;
-    internal::solve_euclidean_conformal_metric(itri, std::vector<char>(std::size_t(nv), 1), np, "spherical embedding", delaunay);
-    emb.flips = delaunay.flips;
-  }
-  emb.puncture = internal::choose_puncture(itri);
-  const int p = emb.puncture;
-
-  // ---- 2. the flat metric of the disk (the surface minus the open star of p), the inversion's data on p's link
-  std::vector<char> fixed(std::size_t(nv), 0), keep(std::size_t(nv), 0);
-  keep[std::size_t(p)] = 1;
-  const std::vector<double> fixed_u = internal::inversion_data(itri, p, fixed);
-  const std::size_t delaunay_flips = emb.flips;
-  internal::solve_euclidean_conformal_metric(itri, fixed, np, "spherical embedding", emb, &keep, &fixed_u);
-  emb.flips += delaunay_flips;
-  auto in_star = [&](int f) {
-    const auto& c = itri.face_vertices(std::size_t(f));
-    return c[0] == p || c[1] == p || c[2] == p;
-  };
-  // the solver counts every face; the star's (all corners fixed, in no angle sum that is solved) has
-  // lengths scaled by the inversion's data, which give it no shape in the plane: judged on the sphere
-  emb.degenerate_triangles = 0;
-  for(int f = 0; f < nf; ++f)
-    if(!in_star(f)) {
-      bool deg;
-      internal::corner_angles(internal::scaled_face_lengths(itri, f, emb.u), deg);
-      if(deg) ++emb.degenerate_triangles;
+  bool seams = false;
+  for(int v = 0; v < int(itri.number_of_vertices()) && !seams; ++v) seams = itri.seam(v) >= 0;
+  if(!seams) return internal::spherical_embedding_once(itri, np, nullptr);
+  // a seam edge never flips, and the planar metric can flatten the triangle on it: then its seam edges
+  // facing an obtuse angle in that metric are split in the triangulation as it was given, and it is
+  // solved again (at most 3 more attempts)
+  Intrinsic_triangulation entry = itri;  // the triangulation as given: each attempt flips `itri`
+  std::size_t splits = 0;
+  for(int attempt = 0;; ++attempt) {
+    std::vector<std::pair<int, int>> obtuse;
+    try {
+      Spherical_embedding emb = internal::spherical_embedding_once(itri, np, &obtuse);
+      emb.seam_splits = splits;
+      return emb;
+    } catch(const Convergence_failure& e) {
+      std::size_t made = 0;
+      if(attempt < 3) {
+        std::sort(obtuse.begin(), obtuse.end());
+        obtuse.erase(std::unique(obtuse.begin(), obtuse.end()), obtuse.end());
+        for(const auto& ab : obtuse) {
+          const int h = entry.find_halfedge(ab.first, ab.second);
+          if(h < 0 || entry.twin(h) < 0 || !entry.is_seam_edge(h)) continue;
+          internal::split_interior_edge_at_midpoint(entry, h, internal::midpoint_surface_point(entry, ab.first, ab.second));
+          ++made;
+        }
+      }
+      if(made == 0 && splits == 0) throw;
+      if(made == 0)
+        throw Convergence_failure(std::string(e.what()) + " (after " + std::to_string(splits) + " seam edges of the holes' loops were split in " +
+                                      std::to_string(attempt) + " more attempts)",
+                                  e.residual());
+      splits += made;
+      itri = entry;
     }
-  if(emb.degenerate_triangles > 0)
-    throw Convergence_failure("spherical embedding: " + std::to_string(emb.degenerate_triangles) +
-                                  " triangles are flat in the planar metric (the metric is too wild, or the surface too thin or sharply folded, for this background: smooth the metric or refine the input)",
-                              double(emb.degenerate_triangles));
-  // unfold the disk breadth-first (every face but the star of p), each vertex once
-  std::vector<std::array<double, 3>> L(static_cast<std::size_t>(nf));
-  for(int f = 0; f < nf; ++f) L[std::size_t(f)] = internal::scaled_face_lengths(itri, f, emb.u);
-  int f0 = 0;
-  while(in_star(f0)) ++f0;  // the star is not everything: the link is a simple cycle of length >= 3
-  std::vector<Eigen::Vector2d> uv(std::size_t(nv), Eigen::Vector2d::Zero());
-  std::vector<char> placed(std::size_t(nv), 0), done;
-  internal::unfold_breadth_first(itri, L, f0, Eigen::Vector2d(0, 0), Eigen::Vector2d(L[std::size_t(f0)][0], 0),
-                                 [&](int h) { return !in_star(Intrinsic_triangulation::face(itri.twin(h))); }, internal::third_point,
-                                 done, &uv, &placed);
-
-  // ---- 3. inverse stereographic projection, 4. Moebius normalisation
-  emb.position = internal::inverse_stereographic_projection(uv, p);
-  internal::centre_by_moebius_map(itri, emb);
-
-  // ---- checks, conformal factor and angle distortion
-  internal::check_spherical_layout_and_measure(itri, emb);
-  return emb;
+  }
 }
 
 } // namespace Aniso_conformal

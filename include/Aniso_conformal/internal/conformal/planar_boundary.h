@@ -10,6 +10,7 @@
 #include <Aniso_conformal/internal/conformal/layout.h>
 #include <Aniso_conformal/internal/conformal/newton_solver.h>
 #include <Aniso_conformal/internal/domains/simple_polygon_2.h>
+#include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 
 #include <Eigen/Core>
 
@@ -206,25 +207,7 @@ inline std::size_t split_encroached_boundary_edges(Intrinsic_triangulation& itri
       const int a = e.first, b = e.second;
       const double ab = itri.length(h), bc = itri.length(itri.next(h)), ca = itri.length(itri.prev(h));
       // the point: the mean of the ends' barycentric coordinates over the input vertices
-      std::vector<std::pair<std::size_t, double>> w;
-      for(const Surface_point* p : {&itri.point(a), &itri.point(b)})
-        for(int k = 0; k < 3; ++k) {
-          if(p->barycentric[k] == 0) continue;
-          auto it = std::find_if(w.begin(), w.end(), [&](const std::pair<std::size_t, double>& x) { return x.first == p->vertices[std::size_t(k)]; });
-          if(it == w.end()) w.emplace_back(p->vertices[std::size_t(k)], 0.5 * p->barycentric[k]);
-          else it->second += 0.5 * p->barycentric[k];
-        }
-      std::sort(w.begin(), w.end(), [](const std::pair<std::size_t, double>& x, const std::pair<std::size_t, double>& y) { return x.second > y.second; });
-      Surface_point sp;
-      sp.position = 0.5 * (itri.position(a) + itri.position(b));
-      double total = 0;
-      for(std::size_t k = 0; k < 3; ++k) {
-        const std::size_t i = std::min(k, w.size() - 1);
-        sp.vertices[k] = w[i].first;
-        sp.barycentric[int(k)] = k < w.size() ? w[k].second : 0.0;
-        total += sp.barycentric[int(k)];
-      }
-      sp.barycentric /= total;
+      const Surface_point sp = midpoint_surface_point(itri, a, b);
       const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
       // the new halfedges: a->m and m->b on the boundary, m->c inside (Intrinsic_triangulation::split)
       for(int o : itri.outgoing_halfedges(m)) {

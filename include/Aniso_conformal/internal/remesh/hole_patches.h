@@ -11,6 +11,7 @@
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/conformal/newton_solver.h>
+#include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/refine_background.h>
 
@@ -208,19 +209,10 @@ inline std::size_t make_seams_delaunay(Intrinsic_triangulation& itri, const Inpu
       const int h = itri.find_halfedge(ab.first, ab.second);
       if(h < 0 || itri.twin(h) < 0) continue;
       if(splits >= most) return splits;
-      const int t = itri.twin(h), a = itri.tail(h), b = itri.head(h), c = itri.opposite_vertex(h), d = itri.opposite_vertex(t);
-      const double L = itri.length(h);
-      auto median = [L](double x, double y) { return 0.5 * std::sqrt(std::max(0.0, 2 * x * x + 2 * y * y - L * L)); };
-      const double mc = median(itri.length(Intrinsic_triangulation::next(h)), itri.length(Intrinsic_triangulation::prev(h)));
-      const double md = median(itri.length(Intrinsic_triangulation::next(t)), itri.length(Intrinsic_triangulation::prev(t)));
-      const Eigen::Vector3d mid = 0.5 * (itri.position(a) + itri.position(b));
+      const Eigen::Vector3d mid = 0.5 * (itri.position(ab.first) + itri.position(ab.second));
       Surface_point sp = input.project(mid);
       sp.position = mid;
-      const int m = itri.split(h, sp, 0.5 * (itri.Q(a) + itri.Q(b)));
-      itri.set_length(itri.find_halfedge(a, m), 0.5 * L);
-      itri.set_length(itri.find_halfedge(m, b), 0.5 * L);
-      itri.set_length(itri.find_halfedge(m, c), mc);
-      itri.set_length(itri.find_halfedge(m, d), md);
+      split_interior_edge_at_midpoint(itri, h, sp);
       ++splits;
     }
   }
