@@ -101,10 +101,6 @@ inline bool metric_equilateral_apex(const Eigen::Vector3d& p, const Eigen::Vecto
   return apex.allFinite();
 }
 
-// `candidate` may replace `current`: it has fewer inverted triangles, or as many and none of G_min,
-// theta_min, theta_avg, %<30 worse and a larger sum of G. Since every operation replaces a fixed number
-// of triangles, none of the report's G_min, G_avg, theta_min, theta_avg, %<30 can then get worse (up to
-// the rounding of the report's sums), and G_sum strictly increasing rules out cycles.
 // the sum of G of `candidate` is larger than that of `current`, beyond rounding (the strict increase that
 // rules out cycles in improves() and improves_above_floors())
 inline bool raises_G_sum(const Local_score& candidate, const Local_score& current)
@@ -112,6 +108,10 @@ inline bool raises_G_sum(const Local_score& candidate, const Local_score& curren
   return candidate.G_sum > current.G_sum * (1 + 1e-12);
 }
 
+// `candidate` may replace `current`: it has fewer inverted triangles, or as many and none of G_min,
+// theta_min, theta_avg, %<30 worse and a larger sum of G. Since every operation replaces a fixed number
+// of triangles, none of the report's G_min, G_avg, theta_min, theta_avg, %<30 can then get worse (up to
+// the rounding of the report's sums), and G_sum strictly increasing rules out cycles.
 inline bool improves(const Local_score& candidate, const Local_score& current)
 {
   if(candidate.inverted != current.inverted) return candidate.inverted < current.inverted;

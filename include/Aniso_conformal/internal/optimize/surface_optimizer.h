@@ -312,7 +312,7 @@ private:
       if(m_fixed[i] && !slides(i)) continue;
       one_ring(v, ring);
       const Local_score before = ring_score(ring);
-      if(visit(v, static_cast<const std::vector<F>&>(ring), before)) ++moved;
+      if(visit(v, ring, before)) ++moved;
     }
     return moved;
   }
