@@ -34,10 +34,8 @@ public:
  * parametric domain that does not fit the topology, an impossible vertex count. The input is left
  * unchanged. The tool exits with status 2.
  */
-class Invalid_input : public Error {
-public:
-  /// constructs the exception with the message `what`
-  explicit Invalid_input(const std::string& what) : Error(what) {}
+struct Invalid_input : Error {
+  using Error::Error;  ///< constructs the exception with the message `what` (explicit, as `Error`'s)
 };
 
 /*!
@@ -47,10 +45,8 @@ public:
  * inverted triangles. The message says what was reached and, where one exists, what may help. The
  * input is left unchanged. The tool exits with status 3.
  */
-class Remeshing_failure : public Error {
-public:
-  /// constructs the exception with the message `what`
-  explicit Remeshing_failure(const std::string& what) : Error(what) {}
+struct Remeshing_failure : Error {
+  using Error::Error;  ///< constructs the exception with the message `what` (explicit, as `Error`'s)
 };
 
 /*!
@@ -76,20 +72,16 @@ private:
  * twins disagree, a homology basis of the wrong size): a bug, not a property of the input. The tool
  * exits with status 1.
  */
-class Internal_error : public Error {
-public:
-  /// constructs the exception with the message `what`
-  explicit Internal_error(const std::string& what) : Error(what) {}
+struct Internal_error : Error {
+  using Error::Error;  ///< constructs the exception with the message `what` (explicit, as `Error`'s)
 };
 
 /*!
  * \ingroup PkgAnisoConformalErrors
  * thrown when a visitor asked to stop; the output mesh is left unchanged.
  */
-class Cancelled : public Error {
-public:
-  /// constructs the exception with the message `what`
-  explicit Cancelled(const std::string& what) : Error(what) {}
+struct Cancelled : Error {
+  using Error::Error;  ///< constructs the exception with the message `what` (explicit, as `Error`'s)
 };
 
 } // namespace Aniso_conformal

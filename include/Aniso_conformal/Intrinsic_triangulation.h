@@ -267,29 +267,13 @@ public:
     }
     const int f0 = face(h);
     const int a = tail(h), b = head(h), c = opposite_vertex(h);
-    const int Tbc = m_twin[next(h)], Tca = m_twin[prev(h)];
-    const double Lbc = m_length[next(h)], Lca = m_length[prev(h)];
-    // f0 = (a, m, c), f2 = (m, b, c)
-    m_faces[f0] = {{a, m, c}};
-    const int f2 = add_face({{m, b, c}});
-    if(!m_patch.empty()) m_patch.push_back(m_patch[std::size_t(f0)]);
-    link(3 * f0 + 1, 3 * f2 + 2, nan);  // m->c / c->m
-    link(3 * f0 + 2, Tca, Lca);
-    link(3 * f2 + 1, Tbc, Lbc);
+    const int f2 = split_face(h, m);  // f0 = (a, m, c), f2 = (m, b, c)
     m_length[3 * f0 + 0] = m_length[3 * f2 + 0] = nan;
     if(t >= 0) {
       const int f1 = face(t), d = opposite_vertex(t);
-      const int Tad = m_twin[next(t)], Tdb = m_twin[prev(t)];
-      const double Lad = m_length[next(t)], Ldb = m_length[prev(t)];
-      // f1 = (b, m, d), f3 = (m, a, d)
-      m_faces[f1] = {{b, m, d}};
-      const int f3 = add_face({{m, a, d}});
-      if(!m_patch.empty()) m_patch.push_back(m_patch[std::size_t(f1)]);
+      const int f3 = split_face(t, m);  // f1 = (b, m, d), f3 = (m, a, d)
       link(3 * f1 + 0, 3 * f2 + 0, nan);  // b->m / m->b
-      link(3 * f1 + 1, 3 * f3 + 2, nan);  // m->d / d->m
-      link(3 * f1 + 2, Tdb, Ldb);
       link(3 * f3 + 0, 3 * f0 + 0, nan);  // m->a / a->m
-      link(3 * f3 + 1, Tad, Lad);
       m_out[d] = 3 * f3 + 2;
     } else {
       m_twin[3 * f0 + 0] = -1;
@@ -328,6 +312,22 @@ public:
 
 private:
   // makes halfedges x and y twins (y may be -1: a boundary), both of length `length`
+  // splits the face of halfedge `e` = (x, y), opposite corner z, at the new vertex `m` on `e`: the face
+  // becomes (x, m, z) in place and (m, y, z) is added (returned), joined by the edge m-z (length NaN);
+  // the outer edges y-z and z-x keep their twins and lengths. The halves of `e` are left to the caller.
+  int split_face(int e, int m)
+  {
+    const int f = face(e), x = tail(e), y = head(e), z = opposite_vertex(e);
+    const int Tyz = m_twin[next(e)], Tzx = m_twin[prev(e)];
+    const double Lyz = m_length[next(e)], Lzx = m_length[prev(e)];
+    m_faces[f] = {{x, m, z}};
+    const int g = add_face({{m, y, z}});
+    if(!m_patch.empty()) m_patch.push_back(m_patch[std::size_t(f)]);
+    link(3 * f + 1, 3 * g + 2, std::numeric_limits<double>::quiet_NaN());  // m->z / z->m
+    link(3 * f + 2, Tzx, Lzx);
+    link(3 * g + 1, Tyz, Lyz);
+    return g;
+  }
   void link(int x, int y, double length)
   {
     m_twin[x] = y;

@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>
+#include <Aniso_conformal/internal/intrinsic/longest_edge_queue.h>
 #include <Aniso_conformal/internal/tensor.h>
 
 #include <Eigen/Core>
@@ -90,12 +91,9 @@ Input_surface make_square_background(const AnisotropicMetric& metric, std::size_
     mid.position = 0.5 * (pa + pb);
     return std::sqrt(std::max(0.0, e.dot(metric.tensor(mid) * e)));  // |Q e| without the square root of M
   };
-  typedef std::tuple<double, int, int> Entry;  // length, ends
-  std::priority_queue<Entry> queue;
-  for(int h = 0; h < int(tri.number_of_halfedges()); ++h)
-    if(tri.is_edge_representative(h)) queue.emplace(metric_length(tri.tail(h), tri.head(h)), tri.tail(h), tri.head(h));
+  internal::Longest_edge_queue queue = internal::longest_edge_queue(tri, metric_length);
   while(!queue.empty()) {
-    const Entry e = queue.top();
+    const internal::Edge_key e = queue.top();
     if(background_vertices > 0 ? tri.number_of_vertices() >= background_vertices : std::get<0>(e) <= h_bg) break;
     queue.pop();
     const int h = tri.find_halfedge(std::get<1>(e), std::get<2>(e));

@@ -9,6 +9,7 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/intrinsic/longest_edge_queue.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/parameters.h>
@@ -170,12 +171,9 @@ Refinement_report refine_background(Intrinsic_triangulation& itri, const Input_s
   const double longest_allowed = 2 * report.output_edge_length;
   auto length = [&](int a, int b) { return internal::metric_segment_length(itri.position(a), itri.position(b), itri.Q(a), itri.Q(b)); };
 
-  typedef std::tuple<double, int, int> Entry;  // length, ends
-  std::priority_queue<Entry> queue;
-  for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
-    if(itri.is_edge_representative(h)) queue.emplace(length(itri.tail(h), itri.head(h)), itri.tail(h), itri.head(h));
+  internal::Longest_edge_queue queue = internal::longest_edge_queue(itri, length);
   while(!queue.empty()) {
-    const Entry top = queue.top();
+    const internal::Edge_key top = queue.top();
     if(std::get<0>(top) <= longest_allowed && itri.number_of_vertices() >= least) break;
     queue.pop();
     int h = itri.find_halfedge(std::get<1>(top), std::get<2>(top));

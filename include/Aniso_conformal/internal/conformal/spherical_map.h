@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/conformal/layout.h>
+#include <Aniso_conformal/internal/intrinsic/shortest_paths.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -113,23 +114,12 @@ inline std::vector<double> inversion_data(const Intrinsic_triangulation& itri, i
     fixed[std::size_t(itri.head(h))] = 1;
     fixed_u[std::size_t(itri.head(h))] = -2 * (std::log(itri.length(h)) - mean_log);
   }
-  std::vector<double> d(std::size_t(nv), std::numeric_limits<double>::infinity());
-  typedef std::pair<double, int> Item;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-  d[std::size_t(p)] = 0;
-  heap.push({0.0, p});
-  while(!heap.empty()) {
-    const Item top = heap.top();
-    heap.pop();
-    if(top.first > d[std::size_t(top.second)]) continue;
-    for(int h : itri.outgoing_halfedges(top.second)) {
-      const double dh = top.first + itri.length(h);
-      if(dh < d[std::size_t(itri.head(h))]) {
-        d[std::size_t(itri.head(h))] = dh;
-        heap.push({dh, itri.head(h)});
-      }
-    }
-  }
+  const std::vector<double> d = shortest_paths(
+      std::size_t(nv), p,
+      [&](int u, const auto& relax) {
+        for(int h : itri.outgoing_halfedges(u)) relax(itri.head(h), itri.length(h), h);
+      },
+      [](int) {}, [](int, int) {});
   for(int v = 0; v < nv; ++v)
     if(!fixed[std::size_t(v)] && std::isfinite(d[std::size_t(v)]) && d[std::size_t(v)] > 0)
       fixed_u[std::size_t(v)] = -(std::log(d[std::size_t(v)]) - mean_log);

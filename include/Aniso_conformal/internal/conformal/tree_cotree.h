@@ -7,6 +7,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/intrinsic/breadth_first_faces.h>
+#include <Aniso_conformal/internal/intrinsic/shortest_paths.h>
 
 #include <algorithm>
 #include <deque>
@@ -48,31 +49,18 @@ inline Face_breadth_first shortest_path_faces(const Intrinsic_triangulation& itr
 {
   const std::size_t nf = itri.number_of_faces();
   Face_breadth_first b;  // distance in lengths rounded down is not needed: `order` is by distance
-  std::vector<double> dist(nf, std::numeric_limits<double>::infinity());
   b.distance.assign(nf, -1);
   b.via.assign(nf, -1);
-  typedef std::pair<double, int> Entry;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  dist[std::size_t(start)] = 0;
-  queue.push({0.0, start});
-  while(!queue.empty()) {
-    const Entry top = queue.top();
-    queue.pop();
-    const int f = top.second;
-    if(top.first > dist[std::size_t(f)] || b.distance[std::size_t(f)] >= 0) continue;
-    b.distance[std::size_t(f)] = int(b.order.size());  // rank in the order (a distance in faces is not kept)
-    b.order.push_back(f);
-    for(int k = 0; k < 3; ++k) {
-      const int h = 3 * f + k, g = Intrinsic_triangulation::face(itri.twin(h));
-      const double d = top.first + dual_length[std::size_t(h)];
-      if(b.distance[std::size_t(g)] < 0 && d < dist[std::size_t(g)]) {
-        dist[std::size_t(g)] = d;
-        b.via[std::size_t(g)] = h;
-        queue.push({d, g});
-      }
-    }
-  }
-  b.length = std::move(dist);
+  b.length = shortest_paths(
+      nf, start,
+      [&](int f, const auto& relax) {
+        for(int k = 0; k < 3; ++k) relax(Intrinsic_triangulation::face(itri.twin(3 * f + k)), dual_length[std::size_t(3 * f + k)], 3 * f + k);
+      },
+      [&](int f) {
+        b.distance[std::size_t(f)] = int(b.order.size());  // rank in the order (a distance in faces is not kept)
+        b.order.push_back(f);
+      },
+      [&](int g, int h) { b.via[std::size_t(g)] = h; });
   return b;
 }
 

@@ -136,30 +136,52 @@ inline void check_vertices_for_corners(std::size_t corners, std::size_t n, doubl
   }
 }
 
+// What the two wrappers below share: domain traits `Traits` with more fixed sites given as background
+// vertices (`Corner_site`s), each located exactly at its background corner.
+template <typename Traits>
+class Traits_with_given_sites : public Traits {
+public:
+  Traits_with_given_sites(Traits&& traits, std::vector<Corner_site<typename Traits::Point>> sites)
+    : Traits(std::move(traits)), m_sites(std::move(sites))
+  {}
+
+protected:
+  // site `i` on the background: the given site `i - first` exactly at its corner when `i` is one of
+  // them (they are sites `first` to `first + m_sites.size() - 1`), else where the traits locate it
+  bool locate(std::size_t first, std::size_t i, const typename Traits::Point& site, int& face, Eigen::Vector3d& bary) const
+  {
+    if(i >= first && i < first + m_sites.size()) {
+      m_sites[i - first].background_location(face, bary);
+      return true;
+    }
+    return Traits::background_location(i, site, face, bary);
+  }
+  std::vector<Corner_site<typename Traits::Point>> m_sites;
+};
+
 // Domain traits of a closed domain with the input's corners as fixed sites: the first sites are the
 // corners (in the order given), the rest come from the traits' own initial_sites(); everything else is the
 // traits' own. With no corner it is the traits exactly (same sites, same output bit for bit).
 template <typename Traits>
-class Traits_with_fixed_corners : public Traits {
+class Traits_with_fixed_corners : public Traits_with_given_sites<Traits> {
+  typedef Traits_with_given_sites<Traits> Base;
+  using Base::m_sites;
+
 public:
   typedef typename Traits::Point Point;
-
-  // the domain's traits (from its make_traits()) and the corners' sites (corner_sites())
-  Traits_with_fixed_corners(Traits&& traits, std::vector<Corner_site<Point>> corners)
-    : Traits(std::move(traits)), m_corners(std::move(corners))
-  {}
+  using Base::Base;  // the domain's traits (from its make_traits()) and the corners' sites (corner_sites())
 
   // the corners, then `n - corners` sites of the traits (at least as many as it needs, the first kept)
   std::vector<Point> initial_sites(std::size_t n, unsigned seed)
   {
-    const std::size_t k = m_corners.size();
+    const std::size_t k = m_sites.size();
     if(k == 0) return Traits::initial_sites(n, seed);
     if(n < k)
       throw Invalid_input("remesh(): the input has " + std::to_string(k) + " corners, each kept as an output vertex, but " +
                           std::to_string(n) + " output vertices were requested");
     std::vector<Point> sites;
     sites.reserve(n);
-    for(const auto& c : m_corners) sites.push_back(c.site);
+    for(const auto& c : m_sites) sites.push_back(c.site);
     if(n > k) {
       // a domain needs a few sites (the sphere 4): ask for that many and keep the first n - k
       std::vector<Point> free = Traits::initial_sites(std::max<std::size_t>(n - k, 4), seed);
@@ -169,20 +191,13 @@ public:
     return sites;
   }
   // all the sites given (the corners, then the crease sites, the holes' loop sites and any patch apexes)
-  std::size_t number_of_fixed_sites() const { return m_corners.size(); }
+  std::size_t number_of_fixed_sites() const { return m_sites.size(); }
   // a corner's site is exactly its background corner; the other sites are located by the traits
   bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const
   {
-    if(i < m_corners.size()) {
-      m_corners[i].background_location(face, bary);
-      return true;
-    }
-    return Traits::background_location(i, site, face, bary);
+    return Base::locate(0, i, site, face, bary);
   }
-  std::size_t number_of_corners() const { return m_corners.size(); }
-
-private:
-  std::vector<Corner_site<Point>> m_corners;
+  std::size_t number_of_corners() const { return m_sites.size(); }
 };
 
 // Domain traits of the plane (Planar_domain_traits, whose own fixed sites are the boundary's, which its
@@ -192,14 +207,13 @@ private:
 // density; dropping the nearest keeps the sampling even). `boundary_site_vertex()` and the rest are the
 // traits' own. With no site given it is the traits exactly (same sites, same output bit for bit).
 template <typename Traits>
-class Traits_with_interior_fixed_sites : public Traits {
+class Traits_with_interior_fixed_sites : public Traits_with_given_sites<Traits> {
+  typedef Traits_with_given_sites<Traits> Base;
+  using Base::m_sites;
+
 public:
   typedef typename Traits::Point Point;
-
-  // the plane's traits (from its make_traits()) and the interior sites (corner_sites(), seam_site())
-  Traits_with_interior_fixed_sites(Traits&& traits, std::vector<Corner_site<Point>> sites)
-    : Traits(std::move(traits)), m_sites(std::move(sites))
-  {}
+  using Base::Base;  // the plane's traits (from its make_traits()) and the interior sites (corner_sites(), seam_site())
 
   // the traits' `n` sites with `k` free ones replaced by the interior fixed sites after the boundary's
   // \throws Remeshing_failure if the traits leave fewer than `k` free sites (a boundary that takes most)
@@ -231,16 +245,8 @@ public:
   // an interior fixed site is exactly its background corner; the others are located by the traits
   bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const
   {
-    const std::size_t nb = Traits::number_of_fixed_sites();
-    if(i >= nb && i < nb + m_sites.size()) {
-      m_sites[i - nb].background_location(face, bary);
-      return true;
-    }
-    return Traits::background_location(i, site, face, bary);
+    return Base::locate(Traits::number_of_fixed_sites(), i, site, face, bary);
   }
-
-private:
-  std::vector<Corner_site<Point>> m_sites;
 };
 
 } // namespace internal
