@@ -6,7 +6,8 @@
 // kept, crease length covered by output edges) on meshes whose answer is known by hand, and the whole
 // pipeline on a cube through the sphere and on a disk through the plane (the only domains this module
 // compiles): corners kept as output vertices, creases as chains of output edges (test/data/cases:
-// cube_grid.off, capped_cylinder.off, pyramid_grid.off, hip_roof.off).
+// cube_grid.off, capped_cylinder.off, pyramid_grid.off, hip_roof.off), and the crowded vertices next to the
+// crease sites moved by the surface optimisation (CGAL's part.off).
 
 #define BOOST_TEST_MODULE Aniso_conformal_features
 #include <boost/test/unit_test.hpp>
@@ -17,6 +18,10 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
+#include <Aniso_conformal/internal/optimize/crowded_vertices.h>
+#include <Aniso_conformal/internal/optimize/triangle_orientation.h>
+#include <Aniso_conformal/internal/tensor.h>
+#include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/Default_visitor.h>
 #include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/Spherical_domain.h>
@@ -792,4 +797,64 @@ BOOST_AUTO_TEST_CASE(a_crease_refinement_that_fails_keeps_its_split_count)
   BOOST_TEST(message.find("the creases need more than 70 background vertices") != std::string::npos, message);
   BOOST_TEST(itri.number_of_vertices() == 70u);
   BOOST_TEST(splits == 64u);  // 0 before: the second run was skipped
+}
+
+BOOST_AUTO_TEST_CASE(crowded_vertices_move_to_split_edges_and_no_figure_gets_worse)
+{
+  // CGAL's part.off (175 vertices, flat faces and sharp creases) at 1000 vertices, the dual mesh as the CVT
+  // left it (no surface optimisation): thin triangles remain next to the crease sites, where the fixed
+  // sites left a free vertex crowded or a gap. relocate_crowded_vertices() moves some free vertices to the
+  // midpoints of the thin triangles' longest edges (crowded_vertices.h): the vertex and face counts stay,
+  // the fixed sites do not move, the faces still form a closed 2-manifold with the crease edges, every
+  // moved vertex lies on the input, and none of G_min, theta_min, %<30 gets worse.
+  const AC::Input_surface s = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/part.off");
+  AC::Remeshing_result r;
+  const AC::Uniform_metric metric;
+  const AC::Remeshed_surface dual = AC::remesh_in_domain<AC::Spherical_domain>(
+      s, metric, r, AC::parameters::number_of_vertices(std::size_t(1000)).surface_optimization(AC::Surface_optimization::OFF));
+  BOOST_TEST_REQUIRE(r.crease_sites > 0u);
+  AC::Remeshed_surface out = dual;
+  std::vector<Eigen::Matrix3d> Q(out.points.size());
+  for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = AC::internal::symmetric_sqrt(metric.tensor(out.surface_points[i]));
+  const std::vector<Eigen::Matrix3d> Q_before = Q;
+  const AC::internal::Crowded_vertices_report moved =
+      AC::internal::relocate_crowded_vertices(s, metric, out, Q, AC::internal::planar_side(s), 10);
+  BOOST_TEST_MESSAGE("part.off at 1000: " << moved.candidates << " thin triangles, " << moved.moved << " vertices moved");
+  BOOST_TEST(moved.moved > 0u);
+  BOOST_TEST(moved.moved <= 10u);
+  BOOST_TEST(out.points.size() == dual.points.size());
+  BOOST_TEST(out.faces.size() == dual.faces.size());
+  for(std::size_t i = 0; i < out.fixed_vertices; ++i) BOOST_TEST((out.points[i] == dual.points[i]));
+  // a closed 2-manifold: every directed edge once, with its opposite
+  std::map<std::pair<std::size_t, std::size_t>, int> directed;
+  for(const auto& f : out.faces)
+    for(int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+  for(const auto& e : directed) {
+    BOOST_TEST(e.second == 1);
+    BOOST_TEST(directed.count({e.first.second, e.first.first}) == 1u);
+  }
+  for(const auto& e : out.kept_edges) BOOST_TEST(directed.count({e[0], e[1]}) + directed.count({e[1], e[0]}) == 2u);
+  // the moved vertices are points of the input, with the metric there
+  const double diagonal = s.bounding_box_diagonal();
+  std::size_t changed = 0;
+  for(std::size_t i = 0; i < out.points.size(); ++i) {
+    if(out.points[i] == dual.points[i]) continue;
+    ++changed;
+    BOOST_TEST((s.project(out.points[i]).position - out.points[i]).norm() < 1e-9 * diagonal);
+    BOOST_TEST((Q[i] - AC::internal::symmetric_sqrt(metric.tensor(out.surface_points[i]))).norm() < 1e-12);
+  }
+  BOOST_TEST(changed == moved.moved);
+  const AC::Quality_report before = AC::compute_mesh_quality(dual.points, dual.faces, Q_before, 1);
+  const AC::Quality_report after = AC::compute_mesh_quality(out.points, out.faces, Q, 1);
+  BOOST_TEST_MESSAGE("G_min " << before.G_min << " -> " << after.G_min << ", theta_min " << before.theta_min << " -> "
+                              << after.theta_min << ", %<30 " << before.percent_below_30 << " -> " << after.percent_below_30);
+  BOOST_TEST(after.G_min >= before.G_min);
+  BOOST_TEST(after.theta_min >= before.theta_min);
+  BOOST_TEST(after.percent_below_30 < before.percent_below_30);  // each move replaces a thin triangle
+  // the pipeline runs it after its flips and moves, and reports it
+  AC::Remeshing_result full;
+  AC::remesh_in_domain<AC::Spherical_domain>(s, metric, full, AC::parameters::number_of_vertices(std::size_t(1000)));
+  BOOST_TEST(full.surface_optimization.crowded_vertices > 0u);
+  BOOST_TEST(full.inverted_triangles == 0u);
+  BOOST_TEST(full.quality.theta_min >= r.quality.theta_min);
 }

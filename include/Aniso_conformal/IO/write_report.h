@@ -180,6 +180,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                                {"relocations", so.relocations},
                                {"fixed_vertices", so.fixed_vertices},
                                {"sliding_vertices", so.sliding_vertices},
+                               {"crowded_vertices", so.crowded_vertices},
                                {"inverted_before", so.inverted_before},
                                {"inverted_after", so.inverted_after},
                                {"G_min_before", report_number(so.G_min_before)},
