@@ -81,6 +81,15 @@ public:
       m_cut_half_length.push_back(0.5 * hyperbolic_distance(a, b));
     }
     m_distance_to_cut.assign(m_face_of_slot.size(), -1.0);
+    // the point whose images tell the group elements apart (element_index()): the centroid of the face
+    // nearest to the centre of the disk, and half the least distance between two of its images
+    std::size_t ref = 0;
+    for(std::size_t i = 1; i < m_centroid.size(); ++i)
+      if(m_centroid[i].x() < m_centroid[ref].x()) ref = i;
+    if(!m_centroid.empty()) {
+      m_reference = m_centroid[ref];
+      m_merge_tolerance = std::max(1e-3, distance_to_cut(ref));
+    }
   }
 
   // a lower bound on the distance from any point of the face in `slot` to the cut (the boundary of the
@@ -105,20 +114,30 @@ public:
   const std::vector<std::array<Eigen::Vector3d, 3>>& corners() const { return m_corners; }
   std::size_t cap() const { return 60 * m_face_of_slot.size(); }                     // the most copies the band holds
 
-  // the index of group element G, added if new. Elements differ by where they take the apex: the group
-  // acts freely, so two elements take it at least the shortest closed geodesic apart (far above 1e-3),
-  // while one element reached along two paths differs by the layout's rounding (about 1e-6 far out)
-  // (searched among the elements whose image of the apex has nearly the same x0 = cosh(distance to the
-  // apex): within 1e-3, x0 differs by less than 1e-3 sinh(distance + 1e-3) <= 1.01e-3 x0)
+  // the index of group element G, added if new. Elements differ by where they take the reference point
+  // p (a face centroid inside the fundamental domain D, near its centre): the group acts freely, so two
+  // elements g != h take it at least 2 inj(p) >= 2 d(p, boundary of D) apart (their tiles gD and hD do
+  // not overlap), while one element reached along two paths differs by the layout's rounding carried
+  // out along the paths. Within `m_merge_tolerance` = d(p, boundary of D) (a lower bound from
+  // distance_to_cut(), at least 1e-3) two images are one element: a computed bound, where the fixed 1e-3
+  // let the rounding of CGAL's couplingdown (relation error 1.7e-2, images of p 0.002 to 0.05 apart
+  // 10 units out) create 13000 spurious elements and the band of images overflow its cap. Searched among
+  // the elements whose image of p has nearly the same x0 = cosh(distance to the apex): within `tol`,
+  // x0 differs by less than tol e^tol x0.
   int element_index(const Eigen::Matrix3d& G)
   {
-    const Eigen::Vector3d o = G.col(0);
-    if(m_by_height.empty()) m_by_height.emplace(1.0, 0);  // the identity
-    const double slack = 2e-3 * o.x() + 1e-9;
+    const Eigen::Vector3d o = G * m_reference;
+    if(m_by_height.empty()) {  // the identity
+      m_by_height.emplace(m_reference.x(), 0);
+      m_reference_image.assign(1, m_reference);
+    }
+    const double tol = m_merge_tolerance;
+    const double slack = tol * std::exp(tol) * o.x() + 1e-9;
     for(auto it = m_by_height.lower_bound(o.x() - slack); it != m_by_height.end() && it->first <= o.x() + slack; ++it)
-      if(hyperbolic_distance(m_group[std::size_t(it->second)].col(0), o) < 1e-3) return it->second;
+      if(hyperbolic_distance(m_reference_image[std::size_t(it->second)], o) < tol) return it->second;
     m_group.push_back(G);
     m_group_inverse.push_back(lorentz_inverse(G));
+    m_reference_image.push_back(o);
     m_by_height.emplace(o.x(), int(m_group.size() - 1));
     return int(m_group.size() - 1);
   }
@@ -246,7 +265,10 @@ private:
   std::vector<double> m_cut_half_length;        // ... and half its length
   std::vector<double> m_distance_to_cut;        // per slot, distance_to_cut() once computed (-1 before)
   std::vector<Eigen::Matrix3d> m_group, m_group_inverse;
-  std::multimap<double, int> m_by_height;  // the elements by the x0 of their image of the apex
+  std::multimap<double, int> m_by_height;  // the elements by the x0 of their image of the reference point
+  Eigen::Vector3d m_reference = Eigen::Vector3d::UnitX();  // the point whose images tell the elements apart
+  std::vector<Eigen::Vector3d> m_reference_image;          // per element, its image of m_reference
+  double m_merge_tolerance = 1e-3;                         // images of it nearer than this: one element
   std::vector<Face_copy> m_copies;
   std::unordered_set<std::uint64_t> m_member;             // the copies, as (element, slot)
   std::unordered_map<std::uint64_t, int> m_step;          // (element, halfedge) -> element across it
