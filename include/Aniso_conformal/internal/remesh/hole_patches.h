@@ -154,7 +154,8 @@ inline bool fill_hole_by_fairing(const Input_surface& s, const std::vector<std::
 //   its mean plane, as the jagged or saddle-shaped holes of scans), the hole is filled by Liepa's method
 //   (fill_hole_by_fairing()), whose patch continues the surface smoothly, so that the seam carries no
 //   more curvature than the surface around it; its apex (for the apex site of the sphere) is the new
-//   vertex farthest from the loop in edges. If that fill fails, the cone is kept.
+//   vertex farthest from the loop in edges. If that fill fails, or the loop has more than 1000 vertices
+//   (Liepa's search can be cubic in them), the cone is kept.
 // Only the patches' intrinsic lengths matter (the positions enter the metric edge lengths only), and no
 // output vertex comes from them.
 // \throws Remeshing_failure if a loop spans no area or the closed surface is not valid
@@ -181,7 +182,9 @@ inline Hole_patches close_holes(const Input_surface& s)
                               " vertices) spans no area; this version closes each hole with a cone over its loop");
     std::vector<Eigen::Vector3d> fill_points;
     std::vector<Input_surface::Face> fill_faces;
-    if(cone_folds(s.points(), loop, c, newell) && fill_hole_by_fairing(s, loop, points.size(), fill_points, fill_faces)) {
+    // Liepa's triangulation may fall back to a search cubic in the loop's size: the fill is tried on
+    // loops of at most 1000 vertices (the scans' largest is 136)
+    if(loop.size() <= 1000 && cone_folds(s.points(), loop, c, newell) && fill_hole_by_fairing(s, loop, points.size(), fill_points, fill_faces)) {
       // the apex: the new vertex farthest from the loop in edges (breadth-first over the patch)
       const std::size_t first = points.size();
       std::vector<std::vector<std::size_t>> adjacent(fill_points.size());
