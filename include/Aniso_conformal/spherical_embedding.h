@@ -50,6 +50,8 @@ struct Spherical_embedding {
   /// seam edges (between a hole's patch and the surface) split at their midpoints after an attempt whose
   /// planar metric flattened a triangle onto them (0 when the first attempt embeds)
   std::size_t seam_splits = 0;
+  /// `true` if the first attempt failed and the puncture was then chosen far from the holes' patches
+  bool puncture_away_from_patches = false;
   std::size_t centring_iterations = 0;    ///< iterations of the Moebius normalisation
   double centre_offset = 0;               ///< norm of the area centroid after the Moebius normalisation
   /// angle distortion of the map: |corner angle of the chordal triangle - corner angle with the adjusted
@@ -64,9 +66,10 @@ namespace internal {
 // one attempt of spherical_embedding() (its documentation gives the method); when it fails on triangles
 // flat in the planar metric and `obtuse_seams` is given, the seam edges facing an angle of at least 90
 // degrees in that metric (ends: tail, head) are put there first
+// (`away_from_patches`: the puncture far from the holes' patches, choose_puncture())
 template <typename NamedParameters>
 Spherical_embedding spherical_embedding_once(Intrinsic_triangulation& itri, const NamedParameters& np,
-                                             std::vector<std::pair<int, int>>* obtuse_seams)
+                                             std::vector<std::pair<int, int>>* obtuse_seams, bool away_from_patches = false)
 {
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
   internal::require_closed_surface(itri, "spherical_embedding()", "the sphere", [](int g) { return g == 0; }, "genus 0");
@@ -79,7 +82,7 @@ Spherical_embedding spherical_embedding_once(Intrinsic_triangulation& itri, cons
     internal::solve_euclidean_conformal_metric(itri, std::vector<char>(std::size_t(nv), 1), np, "spherical embedding", delaunay);
     emb.flips = delaunay.flips;
   }
-  emb.puncture = internal::choose_puncture(itri);
+  emb.puncture = internal::choose_puncture(itri, away_from_patches);
   const int p = emb.puncture;
 
   // ---- 2. the flat metric of the disk (the surface minus the open star of p), the inversion's data on p's link
@@ -188,12 +191,17 @@ Spherical_embedding spherical_embedding_once(Intrinsic_triangulation& itri, cons
  *
  * Seams (the loops between the surface and the patches that close its holes, `remesh()`; issue 15) never
  * flip, and the planar metric can flatten a triangle onto one (CGAL's ChineseDragon-10kv and lion,
- * isotropic, at 2000 vertices: a vertex of a thin triangle along a loop scaled onto the seam edge). When an
- * attempt fails so, the seam edges that face an angle of 90 degrees or more in that attempt's planar
+ * isotropic, at 2000 vertices: a vertex of a thin triangle along a loop scaled onto the seam edge). When
+ * the first attempt on a triangulation with seams fails (any `Convergence_failure`), all of the above is
+ * done again on the triangulation as it was given with the puncture chosen far from the patches: among
+ * the vertices whose distance along the edges to the nearest vertex of a patch face is at least half the
+ * largest such distance (`Spherical_embedding::puncture_away_from_patches`; a puncture on a seam or in a
+ * patch puts the inversion's log singularity next to seam edges). If that fails with triangles flat
+ * in the planar metric, the seam edges that face an angle of 90 degrees or more in that attempt's planar
  * metric are split at their midpoints in the triangulation as it was given (the halves and the medians of
- * its two triangles, the new vertex on the seam, `Spherical_embedding::seam_splits`) and all of the above
- * is done again, at most 3 more times; `itri` then has these new vertices. A triangulation without seams,
- * or one that embeds at the first attempt, is not touched.
+ * its two triangles, the new vertex on the seam, `Spherical_embedding::seam_splits`) and it is solved
+ * again (the puncture still far from the patches), at most 3 more times; `itri` then has these new
+ * vertices. A triangulation without seams, or one that embeds at the first attempt, is not touched.
  *
  * `Spherical_embedding::angle_distortion_mean` and `angle_distortion_max` compare every corner angle of
  * the chordal triangles, those of the star of `p` included, with the one of `itri`'s lengths. Where the
@@ -219,16 +227,23 @@ Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const Nam
   bool seams = false;
   for(int v = 0; v < int(itri.number_of_vertices()) && !seams; ++v) seams = itri.seam(v) >= 0;
   if(!seams) return internal::spherical_embedding_once(itri, np, nullptr);
-  // a seam edge never flips, and the planar metric can flatten the triangle on it: then its seam edges
-  // facing an obtuse angle in that metric are split in the triangulation as it was given, and it is
-  // solved again (at most 3 more attempts)
+  // a seam edge never flips, and the planar metric can flatten the triangle on it: then the puncture is
+  // chosen far from the patches and it is solved again; if that fails too, its seam edges facing an
+  // obtuse angle in that metric are split in the triangulation as it was given, and it is solved again
+  // (at most 3 more attempts, the puncture still far from the patches)
   Intrinsic_triangulation entry = itri;  // the triangulation as given: each attempt flips `itri`
   std::size_t splits = 0;
+  try {
+    return internal::spherical_embedding_once(itri, np, nullptr);
+  } catch(const Convergence_failure&) {
+    itri = entry;
+  }
   for(int attempt = 0;; ++attempt) {
     std::vector<std::pair<int, int>> obtuse;
     try {
-      Spherical_embedding emb = internal::spherical_embedding_once(itri, np, &obtuse);
+      Spherical_embedding emb = internal::spherical_embedding_once(itri, np, &obtuse, true);
       emb.seam_splits = splits;
+      emb.puncture_away_from_patches = true;
       return emb;
     } catch(const Convergence_failure& e) {
       std::size_t made = 0;
@@ -242,10 +257,12 @@ Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const Nam
           ++made;
         }
       }
-      if(made == 0 && splits == 0) throw;
       if(made == 0)
-        throw Convergence_failure(std::string(e.what()) + " (after " + std::to_string(splits) + " seam edges of the holes' loops were split in " +
-                                      std::to_string(attempt) + " more attempts)",
+        throw Convergence_failure(std::string(e.what()) + " (also with the puncture far from the holes' patches" +
+                                      (splits > 0 ? ", after " + std::to_string(splits) + " seam edges of the holes' loops were split in " +
+                                                        std::to_string(attempt) + " more attempts"
+                                                  : std::string()) +
+                                      ")",
                                   e.residual());
       splits += made;
       itri = entry;

@@ -54,7 +54,13 @@ inline double spherical_triangle_area(const Eigen::Vector3d& a, const Eigen::Vec
 // the smallest index. A link edge whose margin is 0 is cocircular with p: the inversion from p makes
 // the triangle beyond it flat, which the planar metric cannot hold. (A spoke of margin 0 only makes
 // the link polygon straight at a vertex, which is harmless.) Invalid_input if no link is simple.
-inline int choose_puncture(const Intrinsic_triangulation& itri)
+// With `away_from_patches` (spherical_embedding()'s retry on a surface whose holes are closed by patches),
+// only the vertices at least half as far from the patches as the farthest one (shortest paths along the
+// edges, from every vertex of a patch face) are candidates: a puncture on a seam or in a patch put the
+// log singularity of the inversion's factor next to seam edges, which cannot flip (CGAL's lion.off: a
+// patch vertex one edge from a seam; a plate with a U-shaped hole at 600 vertices: a seam vertex, its
+// flat triangles two and three edges from it).
+inline int choose_puncture(const Intrinsic_triangulation& itri, bool away_from_patches = false)
 {
   const double pi = 3.14159265358979323846;
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
@@ -68,9 +74,35 @@ inline int choose_puncture(const Intrinsic_triangulation& itri)
   }
   auto facing = [&](int h) { return angle[std::size_t(h / 3)][std::size_t((h % 3 + 2) % 3)]; };  // the angle facing h
   auto margin = [&](int h) { return pi - facing(h) - facing(itri.twin(h)); };
+  std::vector<char> candidate(std::size_t(nv), 1);
+  if(away_from_patches && itri.has_patches()) {
+    // Dijkstra from the patches' vertices
+    std::vector<double> d(std::size_t(nv), std::numeric_limits<double>::infinity());
+    typedef std::pair<double, int> Item;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+    for(int f = 0; f < nf; ++f)
+      if(itri.is_patch_face(std::size_t(f)))
+        for(int v : itri.face_vertices(std::size_t(f)))
+          if(d[std::size_t(v)] > 0) d[std::size_t(v)] = 0, heap.push({0.0, v});
+    while(!heap.empty()) {
+      const Item top = heap.top();
+      heap.pop();
+      if(top.first > d[std::size_t(top.second)]) continue;
+      for(int h : itri.outgoing_halfedges(top.second)) {
+        const double dh = top.first + itri.length(h);
+        if(dh < d[std::size_t(itri.head(h))]) d[std::size_t(itri.head(h))] = dh, heap.push({dh, itri.head(h)});
+      }
+    }
+    double farthest = 0;
+    for(double x : d)
+      if(std::isfinite(x)) farthest = std::max(farthest, x);
+    if(farthest > 0)
+      for(int v = 0; v < nv; ++v) candidate[std::size_t(v)] = d[std::size_t(v)] >= 0.5 * farthest;
+  }
   int puncture = -1;
   double best_margin = -std::numeric_limits<double>::infinity();
   for(int v = 0; v < nv; ++v) {
+    if(!candidate[std::size_t(v)]) continue;
     std::vector<int> link;
     double m = std::numeric_limits<double>::infinity();
     for(int h : itri.outgoing_halfedges(v)) {

@@ -15,12 +15,21 @@
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/refine_background.h>
 
+#include <CGAL/Eigen_solver_traits.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Surface_mesh.h>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/SparseLU>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <deque>
+#include <iterator>
 #include <map>
 #include <queue>
 #include <string>
@@ -29,7 +38,8 @@
 #include <vector>
 
 // Surfaces with boundary loops in the closed domains (issue 15, item 3). Each hole is closed by a virtual
-// patch, a cone from a new apex vertex to the loop, so that the surface becomes closed of the same genus
+// patch, a cone from a new apex vertex to the loop (or, where that cone would fold over itself, a fill
+// by Liepa's method, close_holes()), so that the surface becomes closed of the same genus
 // and goes to the sphere, the flat torus or the hyperbolic disk as a closed surface does; the input is
 // never modified. In the background (Intrinsic_triangulation) the patch's faces carry no CVT density and
 // each loop is a seam whose edges are never flipped; sites are fixed along every seam at about equal
@@ -60,12 +70,95 @@ struct Hole_patches {
   std::vector<Patch_vertex> patch_vertices;     // the vertices of `closed` from input_vertices on
 };
 
-// Closes each boundary loop of `s` with a cone: its apex above the loop's centroid, at half the loop's
-// mean radius, on the side the patch's orientation (consistent with the surface's) points to, one fan
-// of triangles from the apex (cutting it into rings of copies of the loop made a square loop's corners
-// go flat in the conformal map: test_boundaries' plate). The cone is a topological disk whatever the loop's shape;
-// only its intrinsic lengths matter (the positions enter the metric edge lengths only), and no output
-// vertex comes from it.
+// `true` if the cone of close_holes() over `loop` (points `pts`, centroid `c`, Newell vector `newell`)
+// folds over itself: some fan triangle (centroid, loop[i], loop[i + 1]), seen along `newell`, turns the
+// other way round the centroid than the loop as a whole, i.e. the loop is not star-shaped about its
+// centroid in its mean plane. Such a cone closes the hole with a crumpled surface: the fan triangles of
+// the folds add their angles at the apex and at the loop vertices where they should cancel (CGAL's
+// lion.off: apex angle sum 647 degrees, loop vertices with 2 pi minus their angle sum from -163 to +284
+// degrees, against at most 74 on the scans that embed), and the flat metric has singularities of that
+// strength on the seam, whose edges cannot flip: its triangles there go flat whatever their size.
+inline bool cone_folds(const std::vector<Eigen::Vector3d>& pts, const std::vector<std::size_t>& loop, const Eigen::Vector3d& c,
+                       const Eigen::Vector3d& newell)
+{
+  const Eigen::Vector3d n = newell.normalized();
+  for(std::size_t i = 0; i < loop.size(); ++i) {
+    const Eigen::Vector3d a = pts[loop[i]] - c, b = pts[loop[(i + 1) % loop.size()]] - c;
+    if(a.cross(b).dot(n) < -1e-12 * a.norm() * b.norm()) return true;  // a radial edge (0 up to rounding) is no fold
+  }
+  return false;
+}
+
+// A hole of `s` filled by Liepa's method (Liepa 2003, "Filling holes in meshes"; CGAL's
+// triangulate_refine_and_fair_hole(): a triangulation of the loop minimising the worst dihedral angle,
+// then area, among triangles that add no edge the surface has already; refined to the density of the
+// loop's edges; its new vertices moved to minimise the bi-Laplacian energy (cotangent weights, sparse
+// LU), which continues the surface smoothly across the loop). `loop` is the hole's loop in the
+// orientation of the faces. On success `points` receives the new vertices (their indices in the closed
+// surface `first + k`), `faces` the patch's triangles (indices: the input's below `s.number_of_vertices()`,
+// `first + k` for new vertex k), oriented as the surface; returns false, leaving both empty, if CGAL
+// finds no triangulation or the fill has no vertex inside (close_holes() then uses the cone). If the
+// fairing's linear solve fails, the refined triangulation is kept unfaired (flat triangles spanning the loop).
+inline bool fill_hole_by_fairing(const Input_surface& s, const std::vector<std::size_t>& loop, std::size_t first,
+                                 std::vector<Eigen::Vector3d>& points, std::vector<Input_surface::Face>& faces)
+{
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+  typedef CGAL::Surface_mesh<K::Point_3> Mesh;
+  typedef CGAL::Eigen_solver_traits<Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>> Solver;
+  points.clear();
+  faces.clear();
+  Mesh m;
+  for(const Eigen::Vector3d& p : s.points()) m.add_vertex(K::Point_3(p.x(), p.y(), p.z()));
+  for(const auto& f : s.faces())
+    if(m.add_face(Mesh::Vertex_index(Mesh::size_type(f[0])), Mesh::Vertex_index(Mesh::size_type(f[1])),
+                  Mesh::Vertex_index(Mesh::size_type(f[2]))) == Mesh::null_face())
+      return false;
+  // the loop edge loop[0] -> loop[1] is a halfedge of a face: its opposite is on the hole's border
+  const auto h = CGAL::halfedge(Mesh::Vertex_index(Mesh::size_type(loop[0])), Mesh::Vertex_index(Mesh::size_type(loop[1])), m);
+  if(!h.second || !m.is_border(m.opposite(h.first))) return false;
+  std::vector<Mesh::Face_index> new_faces;
+  std::vector<Mesh::Vertex_index> new_vertices;
+  CGAL::Polygon_mesh_processing::triangulate_refine_and_fair_hole(m, m.opposite(h.first), std::back_inserter(new_faces),
+                                                                  std::back_inserter(new_vertices),
+                                                                  CGAL::parameters::sparse_linear_solver(Solver()));
+  if(new_faces.empty() || new_vertices.empty()) return false;
+  const std::size_t nv = s.number_of_vertices();
+  std::map<std::size_t, std::size_t> index;  // vertex of m -> vertex of the closed surface
+  for(Mesh::Vertex_index v : new_vertices) {
+    index[std::size_t(v)] = first + points.size();
+    const K::Point_3& q = m.point(v);
+    points.push_back(Eigen::Vector3d(q.x(), q.y(), q.z()));
+  }
+  for(Mesh::Face_index f : new_faces) {
+    Input_surface::Face face;
+    std::size_t k = 0;
+    for(Mesh::Vertex_index v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+      if(k == 3) return points.clear(), faces.clear(), false;
+      const std::size_t w = std::size_t(v);
+      if(w < nv) face[k++] = w;
+      else if(index.count(w)) face[k++] = index[w];
+      else return points.clear(), faces.clear(), false;
+    }
+    if(k != 3) return points.clear(), faces.clear(), false;
+    faces.push_back(face);
+  }
+  return true;
+}
+
+// Closes each boundary loop of `s` with a virtual patch, so that the closed surface has the input's genus:
+// - a cone: its apex above the loop's centroid, at half the loop's mean radius, on the side the patch's
+//   orientation (consistent with the surface's) points to, one fan of triangles from the apex (cutting it
+//   into rings of copies of the loop made a square loop's corners go flat in the conformal map:
+//   test_boundaries' plate). The cone is a topological disk whatever the loop's shape;
+// - but where that cone folds over itself (cone_folds(): the loop is not star-shaped about its centroid in
+//   its mean plane, as the jagged or saddle-shaped holes of scans), the hole is filled by Liepa's method
+//   (fill_hole_by_fairing()), whose patch continues the surface smoothly, so that the seam carries no
+//   more curvature than the surface around it; its apex (for the apex site of the sphere) is the new
+//   vertex farthest from the loop in edges. If that fill fails, or the loop has more than 1000 vertices
+//   (Liepa's search can be cubic in them), the cone is kept.
+// Only the patches' intrinsic lengths matter (the positions enter the metric edge lengths only), and no
+// output vertex comes from them.
+// \throws Remeshing_failure if a loop spans no area or the closed surface is not valid
 inline Hole_patches close_holes(const Input_surface& s)
 {
   const std::vector<std::vector<std::size_t>>& loops = s.boundary_loops();
@@ -87,6 +180,40 @@ inline Hole_patches close_holes(const Input_surface& s)
     if(!(newell.norm() > 1e-12 * radius * radius) || !(radius > 0))
       throw Remeshing_failure("remesh(): boundary loop " + std::to_string(l) + " (" + std::to_string(loop.size()) +
                               " vertices) spans no area; this version closes each hole with a cone over its loop");
+    std::vector<Eigen::Vector3d> fill_points;
+    std::vector<Input_surface::Face> fill_faces;
+    // Liepa's triangulation may fall back to a search cubic in the loop's size: the fill is tried on
+    // loops of at most 1000 vertices (the scans' largest is 136)
+    if(loop.size() <= 1000 && cone_folds(s.points(), loop, c, newell) && fill_hole_by_fairing(s, loop, points.size(), fill_points, fill_faces)) {
+      // the apex: the new vertex farthest from the loop in edges (breadth-first over the patch)
+      const std::size_t first = points.size();
+      std::vector<std::vector<std::size_t>> adjacent(fill_points.size());
+      std::vector<int> hops(fill_points.size(), -1);
+      std::deque<std::size_t> queue;
+      for(const auto& f : fill_faces)
+        for(std::size_t k = 0; k < 3; ++k) {
+          const std::size_t a = f[k], b = f[(k + 1) % 3];
+          if(a >= first && b >= first) adjacent[a - first].push_back(b - first);
+          if(a >= first && b < first && hops[a - first] < 0) hops[a - first] = 1, queue.push_back(a - first);
+          if(b >= first && a < first && hops[b - first] < 0) hops[b - first] = 1, queue.push_back(b - first);
+        }
+      while(!queue.empty()) {
+        const std::size_t v = queue.front();
+        queue.pop_front();
+        for(std::size_t w : adjacent[v])
+          if(hops[w] < 0) hops[w] = hops[v] + 1, queue.push_back(w);
+      }
+      std::size_t apex = 0;
+      for(std::size_t k = 0; k < fill_points.size(); ++k)
+        if(hops[k] > hops[apex]) apex = k;
+      apexes.push_back(first + apex);
+      for(const Eigen::Vector3d& q : fill_points) {
+        points.push_back(q);
+        patch_vertices.push_back({l, 0, 1.0});
+      }
+      faces.insert(faces.end(), fill_faces.begin(), fill_faces.end());
+      continue;
+    }
     // the patch face (b, a, apex) runs along the loop edge a -> b of the surface backwards: its normal is
     // about -newell, and the apex goes that way
     const Eigen::Vector3d top = c - 0.5 * radius * newell.normalized();
@@ -100,7 +227,7 @@ inline Hole_patches close_holes(const Input_surface& s)
                     try {
                       return Input_surface(std::move(points), std::move(faces));
                     } catch(const Invalid_input& e) {
-                      throw Remeshing_failure(std::string("remesh(): the surface closed by a cone over each hole is not valid (") +
+                      throw Remeshing_failure(std::string("remesh(): the surface closed by a patch over each hole is not valid (") +
                                               e.what() + ")");
                     }
                   }(),
