@@ -34,7 +34,7 @@ struct Surface_optimization_report {
   std::size_t relocations = 0;        ///< accepted vertex moves along the input (both relocation passes)
   std::size_t fixed_vertices = 0;     ///< boundary vertices and the mesh's fixed sites (`Remeshed_surface::fixed_vertices`: boundary sites, kept corners), never moved (less the sliding ones)
   std::size_t sliding_vertices = 0;   ///< boundary vertices free to slide along a straight piece of the input's boundary (with `angle_pass_everywhere` only)
-  std::size_t crowded_vertices = 0;   ///< free vertices moved by an edge collapse and an edge split (see `optimize_surface_mesh()`)
+  std::size_t crowded_vertices = 0;   ///< free vertices removed where the mesh is densest and reinserted on a thin triangle's split edge (see `optimize_surface_mesh()`)
   std::size_t inverted_before = 0;    ///< inverted or degenerate triangles before the stage
   std::size_t inverted_after = 0;     ///< the same after it
   double G_min_before = 0;            ///< quality in the metric before the stage (see `Quality_report`)
@@ -210,9 +210,9 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
     }
   };
   first_phase();
-  // crowded vertices (crowded_vertices.h): where the max-min angle pass runs and nothing is inverted, a
-  // free vertex whose one-ring keeps an angle below 30 degrees is taken out by an edge collapse and put
-  // back on a long edge split in two, at most 1 % of the vertices; then the first phase again around them
+  // crowded vertices (crowded_vertices.h): on an output with fixed vertices inside and nothing inverted,
+  // free vertices taken from where the mesh is densest (their star retriangulated without them) to the
+  // split longest edge of a thin triangle, at most 1 % of the vertices; then the first phase again
   if(optimizer->has_interior_fixed_vertices() && count_inverted() == 0) {
     std::vector<Eigen::Matrix3d> Q = optimizer->metric_square_roots();
     const internal::Crowded_vertices_report crowded = internal::relocate_crowded_vertices(
