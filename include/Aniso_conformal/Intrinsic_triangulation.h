@@ -184,6 +184,19 @@ public:
   double seam_parameter(int v) const { return m_seam_t[std::size_t(v)]; }
   /// `true` if the edge of `h` is a piece of a seam (its ends consecutive on one seam): it is never flipped
   bool is_seam_edge(int h) const { return seam_neighbours(tail(h), head(h)); }
+  /// `true` if the edge of `h` lies on its input loop: a seam edge whose ends are on one input loop edge
+  /// (no input vertex strictly between their parameters). A seam edge that is not (a chord cutting a
+  /// corner of the loop, from `k - 1/2` to `k + 1/2`, which the refinement's splits make next to a sharp
+  /// turn) is never flipped either, but a split of it is not on the loop and is not tagged as a seam vertex
+  bool is_seam_piece(int h) const
+  {
+    if(!is_seam_edge(h)) return false;
+    double ta = m_seam_t[std::size_t(tail(h))], tb = m_seam_t[std::size_t(head(h))];
+    const double L = double(m_seam_size[std::size_t(m_seam[std::size_t(tail(h))])]);
+    if(std::abs(ta - tb) > 0.5 * L) (ta < tb ? ta : tb) += L;  // the piece across t = 0
+    const double lo = std::min(ta, tb), hi = std::max(ta, tb);
+    return !(std::floor(lo) + 1 < hi - 1e-12);  // no integer k with lo < k < hi
+  }
   /// `true` if flipping the edge of `h` would join two vertices of one seam no farther apart along it
   /// than an input loop edge: that edge would count as a seam piece, and the triangle between it and
   /// the seam pieces it spans, all on the straight input edge, would be flat for good (a spoke of a
@@ -249,8 +262,8 @@ public:
     m_corner.push_back(0);
     m_input_angle_sum.push_back(t >= 0 ? 2 * 3.14159265358979323846 : 3.14159265358979323846);
     m_out.push_back(-1);
-    if(!m_seam.empty()) {  // a split seam edge: the new vertex is on the seam, halfway in parameter
-      const bool on_seam = is_seam_edge(h);
+    if(!m_seam.empty()) {  // a split seam piece: the new vertex is on the seam, halfway in parameter
+      const bool on_seam = is_seam_piece(h);
       const int a = tail(h), b = head(h);
       double ta = m_seam_t[std::size_t(a)], tb = m_seam_t[std::size_t(b)];
       if(on_seam) {

@@ -298,7 +298,7 @@ inline double edge_length_without_patches(const Intrinsic_triangulation& itri, s
   return std::sqrt(2 * area / (std::sqrt(3.0) * double(std::max<std::size_t>(n, 1))));
 }
 
-// Splits every seam edge longer than `longest` in the metric at its midpoint (on the input loop's edge:
+// Splits every seam piece (is_seam_piece(): on the input loop) longer than `longest` in the metric at its midpoint (on the input loop's edge:
 // the point is its own projection onto `input`), so that the sites placed along a seam sit at background
 // vertices at about the spacing asked for. The new edges' lengths are set (compute_metric_edge_lengths()).
 inline std::size_t refine_seams(Intrinsic_triangulation& itri, const Input_surface& input, double longest, std::size_t most)
@@ -306,13 +306,13 @@ inline std::size_t refine_seams(Intrinsic_triangulation& itri, const Input_surfa
   auto length = [&](int a, int b) { return metric_segment_length(itri.position(a), itri.position(b), itri.Q(a), itri.Q(b)); };
   Longest_edge_queue queue;
   for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
-    if(itri.is_edge_representative(h) && itri.is_seam_edge(h)) queue.emplace(length(itri.tail(h), itri.head(h)), itri.tail(h), itri.head(h));
-  return split_longest_at_input_midpoints(itri, input, queue, longest, most, [&](int h) { return itri.is_seam_edge(h); },
+    if(itri.is_edge_representative(h) && itri.is_seam_piece(h)) queue.emplace(length(itri.tail(h), itri.head(h)), itri.tail(h), itri.head(h));
+  return split_longest_at_input_midpoints(itri, input, queue, longest, most, [&](int h) { return itri.is_seam_piece(h); },
                                           "the boundary loops");
 }
 
 // Makes the seam edges closer to intrinsically Delaunay, as a constrained Delaunay refinement does: the
-// rest is flipped to the intrinsic Delaunay triangulation (the lengths kept), then each seam edge whose
+// rest is flipped to the intrinsic Delaunay triangulation (the lengths kept), then each seam piece whose
 // two facing angles add up to more than pi is split at its midpoint (on the input loop; the new edges'
 // lengths the medians of its two triangles), in at most `rounds` rounds and `most` splits: a seam edge
 // cannot flip, and a sliver of the input along a loop (an angle near pi facing it) can become flat in the
@@ -328,7 +328,7 @@ inline std::size_t make_seams_delaunay(Intrinsic_triangulation& itri, const Inpu
     const Euclidean_delaunay_flip_rule rule{zero, nullptr, true};
     std::vector<std::pair<int, int>> bad;
     for(int h = 0; h < int(itri.number_of_halfedges()); ++h)
-      if(itri.is_edge_representative(h) && itri.twin(h) >= 0 && itri.is_seam_edge(h) &&
+      if(itri.is_edge_representative(h) && itri.twin(h) >= 0 && itri.is_seam_piece(h) &&
          rule.opposite_angle(itri, h) + rule.opposite_angle(itri, itri.twin(h)) > pi + 1e-10)
         bad.emplace_back(itri.tail(h), itri.head(h));
     if(bad.empty()) return splits;
