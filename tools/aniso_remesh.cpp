@@ -148,6 +148,10 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu boundary corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
                 AC::domain_name(result.domain));
+    if(result.loop_edges_recovered > 0)
+      std::printf("boundary     %zu edges between consecutive sites of a boundary loop recovered by flips\n", result.loop_edges_recovered);
+    if(result.patch_sites_moved > 0)
+      std::printf("boundary     %zu free sites cut off into a hole's patch moved onto the longest edge\n", result.patch_sites_moved);
     std::printf("distance     Hausdorff distance to the input %.3g (%.3g of the bounding-box diagonal)\n",
                 result.hausdorff_distance, result.hausdorff_distance_relative);
     const AC::Feature_report& ft = result.features;

@@ -102,6 +102,14 @@ struct Remeshing_result {
   /// pairs of consecutive crease sites (or corners) left without an output edge between them (the crease
   /// coverage of `features` then misses that piece)
   std::size_t crease_edges_missing = 0;
+  /// pairs of consecutive sites of a boundary loop (a surface with holes in a closed domain, issue 15 item
+  /// 3) the dual did not join, joined by a sequence of output edge flips (the loop's edges are checked
+  /// after; 0 when the dual joined them all, the output then as without the recovery)
+  std::size_t loop_edges_recovered = 0;
+  /// free sites the dual left on the patch side of a loop's chain of sites (cut off with the tip of a spike
+  /// of the surface narrower than the spacing), moved onto the midpoint of the longest output edge between
+  /// two free sites, which they split (internal/remesh/hole_patches.h, remove_patch_triangles())
+  std::size_t patch_sites_moved = 0;
   /// empty, or why the creases were not followed: the runs with crease sites (their pieces refined, then,
   /// if pieces were split or their refinement failed, the sites on the input's own crease vertices) failed, the first with this
   /// message (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)

@@ -140,7 +140,7 @@ template <typename Domain, typename CvtAndDual>
 Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline_start& start, const Intrinsic_triangulation& itri,
                                     const typename Domain::Embedding& emb, double loop_edge_length, const Feature_graph* creases,
                                     const Remeshing_options& options, Remeshing_result& result, std::size_t& apexes,
-                                    CvtAndDual& cvt_and_dual)
+                                    CvtAndDual& cvt_and_dual, const std::vector<Eigen::Vector3d>& sphere_sites)
 {
   const std::size_t n = options.number_of_vertices;
   const Feature_graph& features = start.features;
@@ -203,7 +203,12 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   }
   Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
   Remeshed_surface dual = cvt_and_dual(traits);
-  if(patches) remove_patch_triangles(dual, loops, first, apexes, surface.number_of_vertices());
+  if(patches) {
+    const auto mended = remove_patch_triangles(dual, loops, first, apexes, surface.number_of_vertices(), patches->closed, surface,
+                                               sphere_sites.empty() ? nullptr : &sphere_sites);
+    result.loop_edges_recovered = mended.first;
+    result.patch_sites_moved = mended.second;
+  }
   if(creases) {
     const auto joined = recover_crease_edges(surface, dual, crease_chain, crease_closed);
     result.crease_sites = crease_sites.size();
@@ -354,17 +359,21 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
   const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
   std::size_t apexes = 0;  // the patches' apex sites on the sphere, set by closed_domain_dual()
+  std::vector<Eigen::Vector3d> sphere_sites;  // on the sphere with patches: the sites after the CVT (the loop edges' recovery)
   auto cvt_and_dual = [&](auto& traits) {
     auto sites = traits.initial_sites(n + apexes, options.random_seed);
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
     Remeshed_surface dual = cvt_and_dual_mesh(surface, itri, traits, sites, np, vis, result);
+    if constexpr(Domain::kind == Parametric_domain::SPHERE)
+      if(patches) sphere_sites.assign(sites.begin(), sites.end());
     result.seconds[int(Stage::CVT)] += setup_seconds;
     result.domain_diagnostics = Domain::diagnostics(emb, traits);
     return dual;
   };
   Remeshed_surface out = [&] {
     if constexpr(closed) {
-      return closed_domain_dual<Domain>(surface, start, itri, emb, loop_edge_length, creases, options, result, apexes, cvt_and_dual);
+      return closed_domain_dual<Domain>(surface, start, itri, emb, loop_edge_length, creases, options, result, apexes, cvt_and_dual,
+                                        sphere_sites);
     } else {
       if(creases) return planar_dual_with_creases<Domain>(surface, start.features, itri, emb, plane_corners, options, result, cvt_and_dual);
       typename Domain::Traits traits = Domain::make_traits(itri, emb, options.number_of_threads);

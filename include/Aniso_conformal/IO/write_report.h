@@ -101,6 +101,8 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                  {"inverted_triangles", r.inverted_triangles},
                  {"hausdorff_distance", report_number(r.hausdorff_distance)},
                  {"hausdorff_distance_relative", report_number(r.hausdorff_distance_relative)}};
+  if(r.loop_edges_recovered > 0) j["output"]["loop_edges_recovered"] = r.loop_edges_recovered;  // absent: none missing
+  if(r.patch_sites_moved > 0) j["output"]["patch_sites_moved"] = r.patch_sites_moved;              // absent: none moved
   j["quality"] = {{"G_min", report_number(q.G_min)},
                   {"G_avg", report_number(q.G_avg)},
                   {"theta_min", report_number(q.theta_min)},

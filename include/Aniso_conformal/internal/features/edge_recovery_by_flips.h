@@ -75,18 +75,20 @@ public:
   using Edge = std::pair<std::size_t, std::size_t>;
 
   Flip_edge_recovery(const Input_surface& surface, Remeshed_surface& out, Directed_edge_faces& face_of,
-                     std::vector<std::size_t>& valence, std::size_t a, std::size_t b, double side, const Kept& is_kept)
-    : m_surface(surface), m_out(out), m_face_of(face_of), m_valence(valence), m_a(a), m_b(b), m_side(side), m_is_kept(is_kept)
+                     std::vector<std::size_t>& valence, std::size_t a, std::size_t b, double side, const Kept& is_kept,
+                     const std::vector<Eigen::Vector3d>* sphere = nullptr)
+    : m_surface(surface), m_out(out), m_face_of(face_of), m_valence(valence), m_a(a), m_b(b), m_side(side), m_is_kept(is_kept),
+      m_sphere(sphere)
   {}
 
   bool run(std::size_t max_flips, double least_angle)
   {
     if(!set_projection_plane()) return false;
     std::vector<Edge> crossed;
-    if(!walk(max_flips, crossed)) return false;
-    if(!flip_crossed(crossed, max_flips) || !has_edge(m_a, m_b)) return restore();
+    if(!walk(max_flips, crossed) || m_far) return false;
+    if(!flip_crossed(crossed, max_flips) || !has_edge(m_a, m_b) || m_far) return restore();
     improve_angles();
-    if(!has_edge(m_a, m_b)) return restore();
+    if(!has_edge(m_a, m_b) || m_far) return restore();
     double before = 180, after = 180;
     for(const auto& T : m_before_faces) before = std::min(before, smallest_angle(T));
     for(const std::size_t h : m_touched) after = std::min(after, smallest_angle(m_out.faces[h]));
@@ -100,6 +102,20 @@ private:
   bool set_projection_plane()
   {
     m_at_a = faces_at(m_face_of, m_a);  // in increasing index (the sum of the normals in that order)
+    if(m_sphere) {
+      // the sites on the unit sphere, seen from its centre on the plane tangent at the middle of a and b
+      // (gnomonic projection: the Delaunay triangles' great-circle arcs are straight lines there)
+      if(m_a >= m_sphere->size() || m_b >= m_sphere->size()) return false;
+      const Eigen::Vector3d m = (*m_sphere)[m_a] + (*m_sphere)[m_b];
+      if(!(m.norm() > 1e-9)) return false;
+      m_centre = m.normalized();
+      m_e1 = m_centre.unitOrthogonal();
+      m_e2 = m_centre.cross(m_e1);
+      const double ab2 = (xy(m_b) - xy(m_a)).squaredNorm();
+      if(!(ab2 > 0)) return false;
+      m_eps = 1e-12 * ab2;
+      return true;
+    }
     Eigen::Vector3d n(0, 0, m_side < 0 ? -1 : 1);
     if(!m_surface.is_planar()) {
       std::vector<std::size_t> around = faces_at(m_face_of, m_b);
@@ -124,6 +140,17 @@ private:
 
   Eigen::Vector2d xy(std::size_t v) const
   {
+    if(m_sphere) {
+      // a site on the far side of the tangent plane's hemisphere (never near a and b in practice) has no
+      // image: it marks the recovery as failed
+      const Eigen::Vector3d& d = (*m_sphere)[v];
+      const double w = d.dot(m_centre);
+      if(!(w > 0.1)) {
+        m_far = true;
+        return Eigen::Vector2d::Zero();
+      }
+      return Eigen::Vector2d(d.dot(m_e1) / w, d.dot(m_e2) / w);
+    }
     const Eigen::Vector3d d = m_out.points[v] - m_out.points[m_a];
     return Eigen::Vector2d(d.dot(m_e1), d.dot(m_e2));
   }
@@ -198,10 +225,12 @@ private:
     const std::size_t f = fi->second, g = gi->second;
     const std::size_t w1 = third(f, u, v), w2 = third(g, u, v);  // (u, v, w1) and (v, u, w2)
     if(w1 == w2 || has_edge(w1, w2) || m_valence[u] <= 3 || m_valence[v] <= 3 || m_is_kept(u, v)) return false;
-    if(orient(u, v, w1) * orient(u, v, w2) >= 0 || orient(w1, w2, u) * orient(w1, w2, v) >= 0) return false;
+    if(orient(u, v, w1) * orient(u, v, w2) >= 0 || orient(w1, w2, u) * orient(w1, w2, v) >= 0 || m_far) return false;
     const std::array<std::size_t, 3> T1 = {{w1, u, w2}}, T2 = {{w2, v, w1}};
+    // on the sphere the flip of a convex quadrilateral keeps the sites' triangulation valid: the output
+    // triangles are the dual's, mapped back as every other (stage 6 checks them against the input)
     for(const auto& T : {T1, T2})
-      if(triangle_is_inverted(m_surface, m_out.points[T[0]], m_out.points[T[1]], m_out.points[T[2]], m_out.surface_points[T[0]],
+      if(!m_sphere && triangle_is_inverted(m_surface, m_out.points[T[0]], m_out.points[T[1]], m_out.points[T[2]], m_out.surface_points[T[0]],
                               m_out.surface_points[T[1]], m_out.surface_points[T[2]], m_side))
         return false;
     if(improve_only && !(std::min(smallest_angle(T1), smallest_angle(T2)) >
@@ -289,6 +318,9 @@ private:
   const std::size_t m_a, m_b;
   const double m_side;
   const Kept& m_is_kept;
+  const std::vector<Eigen::Vector3d>* m_sphere;  // the sites on the unit sphere (the domain), or none
+  Eigen::Vector3d m_centre = Eigen::Vector3d::Zero();  // the gnomonic projection's centre
+  mutable bool m_far = false;           // a site had no gnomonic image
   std::vector<std::size_t> m_at_a;      // the faces at a, in increasing index
   Eigen::Vector3d m_e1, m_e2;           // the projection plane's axes
   double m_eps = 0;                     // orientation tolerance, 1e-12 |ab|^2 in the plane
@@ -317,10 +349,11 @@ private:
 template <typename Kept>
 bool recover_edge_by_flips(const Input_surface& surface, Remeshed_surface& out, Directed_edge_faces& face_of,
                            std::vector<std::size_t>& valence, std::size_t a, std::size_t b, double side,
-                           const Kept& is_kept, std::size_t max_flips, double least_angle)
+                           const Kept& is_kept, std::size_t max_flips, double least_angle,
+                           const std::vector<Eigen::Vector3d>* sphere = nullptr)
 {
   if(a == b || a >= out.points.size() || b >= out.points.size()) return false;
-  Flip_edge_recovery<Kept> recovery(surface, out, face_of, valence, a, b, side, is_kept);
+  Flip_edge_recovery<Kept> recovery(surface, out, face_of, valence, a, b, side, is_kept, sphere);
   return recovery.run(max_flips, least_angle);
 }
 

@@ -11,6 +11,7 @@
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/conformal/newton_solver.h>
+#include <Aniso_conformal/internal/features/edge_recovery_by_flips.h>
 #include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/refine_background.h>
@@ -46,7 +47,8 @@
 // metric arc length (their number from the loop's metric length and the output edge length, as the
 // plane places the boundary sites of a disk), at background vertices on the seam, so that they map back
 // exactly onto the input loop. The dual triangles on the patch side of each loop's chain of sites are
-// removed, and what is left is checked: every loop's consecutive sites joined by an output edge, no site
+// removed, and what is left is checked: every loop's consecutive sites joined by an output edge (where the
+// dual did not join two, the edge is recovered by flips first, recover_loop_edges()), no site
 // inside a patch (then the genus and the number of loops are checked with the rest of the output).
 
 namespace Aniso_conformal {
@@ -505,14 +507,74 @@ inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Ho
   return loop_sites_on_stretches(stretches, nl);
 }
 
+// Joins the consecutive sites of every loop that the dual left unjoined (`first[l]`: the index of loop
+// l's first site, as remove_patch_triangles() reads it): a free site, or the loop's own sites across a
+// spike of the surface narrower than their spacing (CGAL's mech-holes-shark.off, a loop turning by 153
+// degrees), can stand between them in the Delaunay triangulation of the sites. Each missing edge is
+// recovered by a sequence of edge flips along the segment between its sites (recover_edge_by_flips(), the
+// flip-based edge recovery of constrained Delaunay triangulation): with `sphere` (the sites on the unit
+// sphere, the domain of genus 0) in the gnomonic projection of the domain about the segment's middle,
+// where the dual is a planar triangulation and a flip of a convex quadrilateral keeps it one; else, or if
+// that fails, on the surface (`closed`: the input with its holes closed, which the output's surface
+// points refer to), the input's normals guarding every flip. The edges joining consecutive sites of a
+// loop are never flipped. At most 64 flips an edge, no angle bound (the alternative is no output).
+// Returns the number of edges recovered; the output is unchanged where none was missing.
+inline std::size_t recover_loop_edges(const Input_surface& closed, Remeshed_surface& out, const Loop_sites& loops,
+                                      const std::vector<std::size_t>& first, const std::vector<Eigen::Vector3d>* sphere)
+{
+  Directed_edge_faces face_of;
+  for(std::size_t f = 0; f < out.faces.size(); ++f)
+    for(int k = 0; k < 3; ++k) face_of[{out.faces[f][std::size_t(k)], out.faces[f][std::size_t((k + 1) % 3)]}] = f;
+  auto joined = [&](std::size_t a, std::size_t b) { return face_of.count({a, b}) && face_of.count({b, a}); };
+  std::vector<std::array<std::size_t, 2>> pairs, missing;
+  for(std::size_t l = 0; l < loops.vertices.size(); ++l) {
+    const std::size_t k = loops.vertices[l].size();
+    for(std::size_t j = 0; j < k; ++j) {
+      const std::size_t a = first[l] + j, b = first[l] + (j + 1) % k;
+      pairs.push_back({{std::min(a, b), std::max(a, b)}});
+      if(!joined(a, b)) missing.push_back({{a, b}});
+    }
+  }
+  if(missing.empty()) return 0;
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<std::size_t> valence(out.points.size(), 0);  // neighbours
+  for(const auto& e : face_of)
+    if(e.first.first < e.first.second || !face_of.count({e.first.second, e.first.first})) {
+      ++valence[e.first.first];
+      ++valence[e.first.second];
+    }
+  auto is_pair = [&](std::size_t a, std::size_t b) {
+    return std::binary_search(pairs.begin(), pairs.end(), std::array<std::size_t, 2>{{std::min(a, b), std::max(a, b)}});
+  };
+  if(sphere && sphere->size() != out.points.size()) sphere = nullptr;
+  std::size_t recovered = 0;
+  for(const auto& ab : missing) {
+    if(joined(ab[0], ab[1])) continue;  // joined by the flips of an earlier pair
+    bool ok = sphere && recover_edge_by_flips(closed, out, face_of, valence, ab[0], ab[1], 0.0, is_pair, 64, 0.0, sphere);
+    if(!ok) ok = recover_edge_by_flips(closed, out, face_of, valence, ab[0], ab[1], 0.0, is_pair, 64, 0.0);
+    if(ok) ++recovered;
+  }
+  return recovered;
+}
+
 // Removes from `out` the dual triangles on the patch side of every loop's chain of sites (`first[l]`,
 // the index of loop l's first site among the sites, its sites following in order; `first.back()` the
 // first of the `apexes` apex sites, one a loop or none (run_pipeline_once()), removed too), and checks
-// what is left: consecutive sites of a loop joined by an output edge, no other site inside a patch,
-// every surface point on the input's own vertices. Throws Convergence_failure otherwise.
-inline void remove_patch_triangles(Remeshed_surface& out, const Loop_sites& loops, const std::vector<std::size_t>& first,
-                                   std::size_t apexes, std::size_t input_vertices)
+// what is left: consecutive sites of a loop joined by an output edge (those the dual did not join first
+// recovered by flips, recover_loop_edges() with `closed`, the input with its holes closed, and `sphere`,
+// the sites on the sphere or none), no other site inside a patch, every surface point on the input's own
+// vertices. A free site left on the patch side of its loop's chain (all its triangles removed: it sat in a
+// part of the surface that the chain's chords cut off, such as the tip of a spike narrower than the
+// spacing) is moved to the midpoint, projected onto `input`, of the longest edge of the output left whose
+// ends are both free sites, and that edge is split there: the output keeps its number of vertices.
+// Returns the number of loop edges recovered and of free sites so moved. Throws Convergence_failure
+// otherwise (a fixed site inside a patch, a free site on both sides of a chain, no edge to split).
+inline std::pair<std::size_t, std::size_t> remove_patch_triangles(Remeshed_surface& out, const Loop_sites& loops,
+                                                                  const std::vector<std::size_t>& first, std::size_t apexes,
+                                                                  std::size_t input_vertices, const Input_surface& closed,
+                                                                  const Input_surface& input, const std::vector<Eigen::Vector3d>* sphere)
 {
+  const std::size_t recovered = recover_loop_edges(closed, out, loops, first, sphere);
   const std::size_t apex_first = first.back(), apex_end = apex_first + apexes;
   const std::size_t nf = out.faces.size();
   std::map<std::pair<std::size_t, std::size_t>, std::size_t> face_of;  // directed edge -> face
@@ -559,15 +621,48 @@ inline void remove_patch_triangles(Remeshed_surface& out, const Loop_sites& loop
   }
   std::vector<std::array<std::size_t, 3>> kept;
   std::vector<char> used(out.points.size(), 0);
+  std::vector<std::size_t> stray;  // free sites in a removed triangle
   for(std::size_t f = 0; f < nf; ++f) {
     if(removed[f]) {
       for(std::size_t v : out.faces[f])
-        if(loop_of[v] == std::size_t(-1) && (v < apex_first || v >= apex_end))
-          throw Convergence_failure("remesh(): output vertex " + std::to_string(v) + " lies inside the patch of a hole", 0);
+        if(loop_of[v] == std::size_t(-1) && (v < apex_first || v >= apex_end)) {
+          if(v < apex_end) throw Convergence_failure("remesh(): output vertex " + std::to_string(v) + " lies inside the patch of a hole", 0);
+          stray.push_back(v);
+        }
       continue;
     }
     kept.push_back(out.faces[f]);
     for(std::size_t v : out.faces[f]) used[v] = 1;
+  }
+  std::sort(stray.begin(), stray.end());
+  stray.erase(std::unique(stray.begin(), stray.end()), stray.end());
+  for(std::size_t v : stray) {
+    if(used[v]) throw Convergence_failure("remesh(): output vertex " + std::to_string(v) + " lies inside the patch of a hole", 0);
+    // the longest edge between two free sites, inside the output left (two triangles), split at v
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> kept_of;
+    for(std::size_t f = 0; f < kept.size(); ++f)
+      for(int k = 0; k < 3; ++k) kept_of[{kept[f][std::size_t(k)], kept[f][std::size_t((k + 1) % 3)]}] = f;
+    double longest = 0;
+    std::pair<std::size_t, std::size_t> edge(0, 0);
+    for(const auto& e : kept_of) {
+      const std::size_t a = e.first.first, b = e.first.second;
+      if(a > b || a < apex_end || b < apex_end || !kept_of.count({b, a})) continue;
+      const double length = (out.points[a] - out.points[b]).norm();
+      if(length > longest) longest = length, edge = e.first;
+    }
+    if(!(longest > 0))
+      throw Convergence_failure("remesh(): output vertex " + std::to_string(v) + " lies inside the patch of a hole", 0);
+    const std::size_t a = edge.first, b = edge.second, f = kept_of[{a, b}], g = kept_of[{b, a}];
+    const std::size_t c = kept[f][0] + kept[f][1] + kept[f][2] - a - b, d = kept[g][0] + kept[g][1] + kept[g][2] - a - b;
+    const Surface_point sp = input.project(0.5 * (out.points[a] + out.points[b]));
+    out.points[v] = sp.position;
+    out.surface_points[v] = sp;
+    // (a, b, c) and (b, a, d) become (a, v, c), (v, b, c), (b, v, d), (v, a, d)
+    kept[f] = {{a, v, c}};
+    kept[g] = {{b, v, d}};
+    kept.push_back({{v, b, c}});
+    kept.push_back({{v, a, d}});
+    used[v] = 1;
   }
   for(std::size_t v = 0; v < used.size(); ++v) {
     const bool apex = v >= apex_first && v < apex_end;
@@ -587,6 +682,7 @@ inline void remove_patch_triangles(Remeshed_surface& out, const Loop_sites& loop
     for(std::size_t w : sp.vertices)
       if(w >= input_vertices) throw Internal_error("remesh(): an output vertex maps onto a hole's patch");
   out.faces = std::move(kept);
+  return {recovered, stray.size()};
 }
 
 } // namespace internal
