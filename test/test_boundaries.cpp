@@ -7,7 +7,9 @@
 // with two square holes and a torus with a hole keep their topology, exactly N vertices, every output
 // vertex on an output boundary on the input's loops, no inverted triangle.
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_boundaries
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Exceptions.h>
@@ -25,6 +27,8 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+
+BOOST_AUTO_TEST_SUITE(boundaries)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 
@@ -277,3 +281,5 @@ BOOST_AUTO_TEST_CASE(a_domain_that_does_not_fit_is_refused)
                                                                 AC::parameters::number_of_vertices(200)),
                     AC::Invalid_input);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // boundaries

@@ -9,7 +9,9 @@
 // cube_grid.off, capped_cylinder.off, pyramid_grid.off, hip_roof.off), and the crowded vertices next to the
 // crease sites moved by the surface optimisation (CGAL's part.off).
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_features
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Feature_graph.h>
@@ -40,6 +42,8 @@
 #include <map>
 #include <string>
 #include <vector>
+
+BOOST_AUTO_TEST_SUITE(features)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 
@@ -858,3 +862,5 @@ BOOST_AUTO_TEST_CASE(crowded_vertices_move_to_split_edges_and_no_figure_gets_wor
   BOOST_TEST(full.inverted_triangles == 0u);
   BOOST_TEST(full.quality.theta_min >= r.quality.theta_min);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // features

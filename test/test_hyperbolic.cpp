@@ -7,7 +7,9 @@
 // Lloyd and L-BFGS, the dual's counts), the whole pipeline on the paper's Fig. 13 Eight and on a
 // genus-3 surface, and the bad inputs.
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_hyperbolic
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Curvature_metric.h>
@@ -33,6 +35,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+BOOST_AUTO_TEST_SUITE(hyperbolic)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 
@@ -495,3 +499,5 @@ BOOST_AUTO_TEST_CASE(genus_two_bad_inputs_name_the_problem)
     }
   }
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // hyperbolic

@@ -9,7 +9,9 @@
 // the documented exceptions; the input is bit-for-bit unchanged either way. Also the BGL entry point's
 // strong guarantee, and the bad inputs of the manual's catalogue that no other module covers.
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_properties
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
@@ -38,6 +40,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+BOOST_AUTO_TEST_SUITE(properties)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -687,3 +691,5 @@ BOOST_AUTO_TEST_CASE(closed_genus_two_goes_to_the_hyperbolic_disk)
     BOOST_TEST(r.hausdorff_distance_relative < (n < 100 ? 0.1 : 0.05), n << " sites: Hausdorff distance " << r.hausdorff_distance_relative);
   }
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // properties

@@ -8,7 +8,9 @@
 // crop and the whole slice), the bundled face mask and the graded square background. This module
 // compiles the plane only; test_properties covers remesh()'s choice of the domain.
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_remesh
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Analytic_metric_2.h>
@@ -48,6 +50,8 @@
 #include <set>
 #include <string>
 #include <utility>
+
+BOOST_AUTO_TEST_SUITE(remesh)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -587,3 +591,4 @@ BOOST_AUTO_TEST_CASE(square_background_resolves_the_metric)
                       "not finite and positive definite"));
 }
 
+BOOST_AUTO_TEST_SUITE_END()  // remesh

@@ -6,7 +6,9 @@
 // repair and its count, the index maps that keep a metric file in line, what stays refused and its
 // message, the repairs turned off, and the inputs left unchanged (the file, the soup, a BGL mesh).
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_repair
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/IO/read_metric_file.h>
@@ -31,6 +33,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+BOOST_AUTO_TEST_SUITE(repair)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 
@@ -587,3 +591,5 @@ BOOST_AUTO_TEST_CASE(inputs_are_never_modified)
   BOOST_TEST(num_faces(m) == nf);
   BOOST_TEST(num_vertices(out) == 0u);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // repair

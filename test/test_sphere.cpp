@@ -16,7 +16,9 @@
 //   the greedy placement on a synthetic body with five limbs next to the sphere, on genus 1 and 2, every
 //   bound).
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_sphere
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Curvature_metric.h>
@@ -55,6 +57,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+BOOST_AUTO_TEST_SUITE(sphere)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 
@@ -1499,3 +1503,5 @@ BOOST_AUTO_TEST_CASE(an_impossible_budget_is_refused_with_the_distortion_reached
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // sphere

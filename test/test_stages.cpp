@@ -6,7 +6,9 @@
 // roots, the intrinsic triangulation, edge-length adjustment, the conformal embedding, the weighted CVT,
 // the dual mesh, the surface optimisation and the quality module.
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_stages
+#endif
 #include <boost/test/unit_test.hpp>
 #include <Eigen/Eigenvalues>
 
@@ -37,6 +39,8 @@
 #include <limits>
 #include <set>
 #include <string>
+
+BOOST_AUTO_TEST_SUITE(stages)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 
@@ -1261,3 +1265,5 @@ BOOST_AUTO_TEST_CASE(quality_reports_the_realised_stretch)
   for(double x : q.vertex_stretch) below += x <= q.stretch_p95;
   BOOST_TEST(below >= s.number_of_vertices() * 95 / 100);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // stages

@@ -6,7 +6,9 @@
 // cyclide against the quality bar, the BGL entry point, the pictures of the periodic CVT and of a curved
 // mesh, and every error path.
 
+#ifndef ANISO_CONFORMAL_TEST_UNITY  // else compiled with other modules in one translation unit (CMakeLists.txt)
 #define BOOST_TEST_MODULE Aniso_conformal_flat_torus
+#endif
 #include <boost/test/unit_test.hpp>
 
 #include <Aniso_conformal/Curvature_metric.h>
@@ -35,6 +37,8 @@
 #include <random>
 #include <set>
 #include <utility>
+
+BOOST_AUTO_TEST_SUITE(flat_torus)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -632,3 +636,5 @@ BOOST_AUTO_TEST_CASE(pictures_of_the_periodic_cvt_and_of_a_curved_mesh)
                                               std::vector<double>(s.number_of_faces(), 0.9), 0.5, 1.0, ""),
                     AC::Invalid_input);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // flat_torus
