@@ -178,6 +178,16 @@ public:
     return sp;
   }
 
+  /// the vertex normals of the face of `sp` interpolated at its barycentric coordinates (not normalised; length
+  /// at most 1): the side of the surface a point is on, for tests that a move or a flip does not cross to
+  /// another sheet of a thin part
+  Eigen::Vector3d interpolated_normal(const Surface_point& sp) const
+  {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for(int j = 0; j < 3; ++j) n += sp.barycentric[j] * m_normals[sp.vertices[std::size_t(j)]];
+    return n;
+  }
+
   /// the point of the surface closest to `p` (an AABB tree is built on first use)
   Surface_point project(const Eigen::Vector3d& p) const
   {

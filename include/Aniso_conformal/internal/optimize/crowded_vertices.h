@@ -219,8 +219,10 @@ private:
     Surface_point sp = surface.project(mid);
     if(surface.is_planar()) sp.position.z() = 0;
     if(!surface.is_planar()) {  // not onto another sheet of a thin part
-      const Eigen::Vector3d n = normal_at(sp);
-      if(!(n.dot(normal_at(mesh.surface_points[a])) > 0) || !(n.dot(normal_at(mesh.surface_points[b])) > 0)) return false;
+      const Eigen::Vector3d n = surface.interpolated_normal(sp);
+      if(!(n.dot(surface.interpolated_normal(mesh.surface_points[a])) > 0) ||
+         !(n.dot(surface.interpolated_normal(mesh.surface_points[b])) > 0))
+        return false;
     }
     const Eigen::Matrix3d Qm = symmetric_sqrt(metric.tensor(sp));
     if(!Qm.allFinite()) return false;
@@ -258,13 +260,7 @@ private:
       const Triangle_figures o1 = fig(F[i1]), o2 = fig(F[i2]), t1 = fig(n1), t2 = fig(n2);
       if(t1.inverted || t2.inverted) continue;
       if(!(std::min(t1.smallest_angle, t2.smallest_angle) > std::min(o1.smallest_angle, o2.smallest_angle) + 1e-9)) continue;
-      const Eigen::Vector3d u = (point(q) - point(x)).cross(point(p) - point(x)), w = (point(y) - point(q)).cross(point(p) - point(q));
-      if(!(u.dot(w) > 0)) continue;  // the two new triangles fold onto each other
-      if(!surface.is_planar()) {
-        const Eigen::Vector3d m_old = 0.5 * (point(x) + point(y)), m_new = 0.5 * (point(p) + point(q));
-        const double d_old = (surface.project(m_old).position - m_old).norm(), d_new = (surface.project(m_new).position - m_new).norm();
-        if(!(d_new <= std::max(2 * d_old, 0.05 * (point(p) - point(q)).norm()))) continue;
-      }
+      if(!flip_keeps_the_shape(surface, point(x), point(y), point(p), point(q), false)) continue;
       set_face(i1, n1);
       set_face(i2, n2);
       ++flips;
@@ -338,12 +334,6 @@ private:
   {
     const std::array<std::size_t, 2> e{{std::min(a, b), std::max(a, b)}};
     return std::find(mesh.kept_edges.begin(), mesh.kept_edges.end(), e) != mesh.kept_edges.end();
-  }
-  Eigen::Vector3d normal_at(const Surface_point& sp) const
-  {
-    Eigen::Vector3d n = Eigen::Vector3d::Zero();
-    for(int j = 0; j < 3; ++j) n += sp.barycentric[j] * surface.vertex_normals()[sp.vertices[j]];
-    return n;
   }
   double metric_length(std::size_t a, std::size_t b) const { return (0.5 * (Q[a] + Q[b]) * (mesh.points[b] - mesh.points[a])).norm(); }
   // the neighbours of v, sorted

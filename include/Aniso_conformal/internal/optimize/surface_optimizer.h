@@ -450,25 +450,11 @@ private:
     return s;
   }
 
-  Eigen::Vector3d interpolated_normal(const Surface_point& sp) const
-  {
-    Eigen::Vector3d n = Eigen::Vector3d::Zero();
-    for(int j = 0; j < 3; ++j) n += sp.barycentric[j] * m_surface.vertex_normals()[sp.vertices[j]];
-    return n;
-  }
+  Eigen::Vector3d interpolated_normal(const Surface_point& sp) const { return m_surface.interpolated_normal(sp); }
 
-  // the two new triangles do not fold onto each other and, unless the flip repairs an inverted triangle,
-  // the new diagonal (c, d) stays as close to the input as the old one (a, b), within 5 % of its length
-  // (a flip across a ridge would cut through the solid)
   bool keeps_the_shape(V a, V b, V c, V d, bool repairs) const
   {
-    const Eigen::Vector3d n1 = (P(d) - P(a)).cross(P(c) - P(a)), n2 = (P(b) - P(d)).cross(P(c) - P(d));
-    if(!(n1.dot(n2) > 0)) return false;
-    if(m_surface.is_planar() || repairs) return true;
-    const Eigen::Vector3d m_old = 0.5 * (P(a) + P(b)), m_new = 0.5 * (P(c) + P(d));
-    const double d_old = (m_surface.project(m_old).position - m_old).norm();
-    const double d_new = (m_surface.project(m_new).position - m_new).norm();
-    return d_new <= std::max(2 * d_old, 0.05 * (P(c) - P(d)).norm());
+    return flip_keeps_the_shape(m_surface, P(a), P(b), P(c), P(d), repairs);
   }
 
   const Input_surface& m_surface;

@@ -10,8 +10,12 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
+
 // The one test of "inverted" for an output triangle, shared by the output check of stage 6
-// (count_inverted_triangles) and the surface optimisation that repairs what it flags.
+// (count_inverted_triangles) and the surface optimisation that repairs what it flags; and the one test
+// that an edge flip of the output keeps the surface's shape, shared by the optimisation's flips and the
+// crowded-vertex move's.
 
 namespace Aniso_conformal {
 namespace internal {
@@ -53,6 +57,23 @@ inline bool triangle_is_inverted(const Input_surface& surface, const Eigen::Vect
     }
   }
   return !(agrees || nf.dot(ref) > 0);
+}
+
+// `true` if flipping the edge (a, b) of the output triangles (a, b, c) and (b, a, d) into (c, d) keeps the
+// surface's shape: the two new triangles (a, d, c) and (d, b, c) do not fold onto each other and, unless the
+// flip repairs an inverted triangle (`repairs`) or the input is planar, the new diagonal stays as close to
+// the input as the old one, within twice its distance or 5 % of its length (measured at the midpoints): a
+// flip across a ridge would cut through the solid
+inline bool flip_keeps_the_shape(const Input_surface& surface, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                 const Eigen::Vector3d& c, const Eigen::Vector3d& d, bool repairs)
+{
+  const Eigen::Vector3d n1 = (d - a).cross(c - a), n2 = (b - d).cross(c - d);
+  if(!(n1.dot(n2) > 0)) return false;
+  if(surface.is_planar() || repairs) return true;
+  const Eigen::Vector3d m_old = 0.5 * (a + b), m_new = 0.5 * (c + d);
+  const double d_old = (surface.project(m_old).position - m_old).norm();
+  const double d_new = (surface.project(m_new).position - m_new).norm();
+  return d_new <= std::max(2 * d_old, 0.05 * (c - d).norm());
 }
 
 } // namespace internal
