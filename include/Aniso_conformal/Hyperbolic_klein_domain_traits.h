@@ -126,7 +126,12 @@ public:
       m_rho[i] = internal::make_background_triangle(emb.corner_klein[f], rho, int(f));
       const auto& X = emb.corner_hyperboloid[f];
       const Point g = internal::normalize_on_hyperboloid(X[0] + X[1] + X[2]);
-      m_frame.push_back(internal::hyperbolic_frame(g, internal::normalize_on_hyperboloid(g + X[0] - X[1])));
+      // the frame's direction from an edge; from none (the pure boost) when the metric shrinks that edge
+      // below where two points determine a direction (CGAL's femur: 4e-14), where hyperbolic_frame()
+      // returns no Lorentz matrix
+      m_frame.push_back(internal::hyperbolic_distance(X[0], X[1]) >= 1e-6
+                            ? internal::hyperbolic_frame(g, internal::normalize_on_hyperboloid(g + X[0] - X[1]))
+                            : internal::hyperbolic_boost(g));
       m_slot[f] = i;
       for(int k = 0; k < 3; ++k)
         m_face_size = std::max(m_face_size, internal::hyperbolic_distance(emb.corner_hyperboloid[f][k], emb.corner_hyperboloid[f][(k + 1) % 3]));

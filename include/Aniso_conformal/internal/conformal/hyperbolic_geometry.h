@@ -86,6 +86,20 @@ inline Eigen::Matrix3d hyperbolic_frame(const Eigen::Vector3d& p, const Eigen::V
   return T;
 }
 
+// the pure boost (no rotation about the apex) taking the apex (1, 0, 0) to p: a Lorentz matrix for every
+// point p of the hyperboloid, with no second point to choose a direction from; hyperbolic_frame(p, q)
+// has none when q is within the rounding of p (a frame fitted to an edge the metric shrinks to 1e-14 is
+// no Lorentz matrix)
+inline Eigen::Matrix3d hyperbolic_boost(const Eigen::Vector3d& p)
+{
+  const double k = 1 / (1 + p.x());
+  Eigen::Matrix3d B;
+  B << p.x(), p.y(), p.z(),
+       p.y(), 1 + k * p.y() * p.y(), k * p.y() * p.z(),
+       p.z(), k * p.y() * p.z(), 1 + k * p.z() * p.z();
+  return B;
+}
+
 // The point r on the left of the geodesic p -> q (counterclockwise in the Klein disk) with
 // d(p, r) = lpr and d(q, r) = lqr: one triangle of a layout.
 inline Eigen::Vector3d hyperbolic_third_point(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double lpr, double lqr)
