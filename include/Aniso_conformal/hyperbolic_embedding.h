@@ -276,11 +276,13 @@ inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const T
  *    Pinkall and Springborn, with intrinsic Delaunay flips that keep the current hyperbolic metric;
  * 2. a homology basis by tree-cotree; the surface cut along the edges not in the cotree (a disk) is
  *    unfolded breadth-first on the hyperboloid, and given in the Klein and the Poincare disks;
- * 3. the deck transformation across every cut edge, from the two copies of the edge; those of the `2 g`
- *    generator edges generate the Fuchsian group;
- * 4. checks: each is a Lorentz matrix, each maps its edge onto its twin, and around every vertex the
- *    product of the transformations crossed is the identity (the relations of the group, Poincare's
- *    polygon theorem); the layout's area is `4 pi (g - 1)`;
+ * 3. the deck transformation across every cut edge, from the two copies of the edge (for an edge shorter
+ *    than `1e-6`, from the two points farthest apart on its side of the cut); the edges hanging from the
+ *    cut (outside the reduced cut graph) get the identity; those of the `2 g` generator edges generate
+ *    the Fuchsian group;
+ * 4. checks: each is a Lorentz matrix, each maps its edge onto its twin (a hanging edge: its two copies
+ *    coincide), and around every vertex the product of the transformations crossed is the identity (the
+ *    relations of the group, Poincare's polygon theorem); the layout's area is `4 pi (g - 1)`;
  * 5. the domain is moved by an isometry so that the mass centre of its corners is the centre of the disk.
  *
  * \param itri a closed triangulation of genus at least 2 with valid edge lengths (after
