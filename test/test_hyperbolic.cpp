@@ -520,12 +520,20 @@ BOOST_AUTO_TEST_CASE(femur_layout_check_fits_no_frame_to_a_degenerate_edge)
     remesh_hyperbolic(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(2000)).visitor(Stop_after_embedding()));
   });
   BOOST_TEST(m == "embedding done");
-  // the pure boost is a Lorentz matrix taking the apex to its point; the frame fitted to two points
-  // within the rounding of each other is not one (what the check no longer does)
+  // the pure boost is a Lorentz matrix taking the apex to its point, and so is the frame of two points
+  // within the rounding of each other (it was not: its direction, mostly rounding, was normalised as if
+  // it were spacelike)
   const Eigen::Vector3d p = AC::internal::from_klein(Eigen::Vector2d(0.6, -0.3));
   const Eigen::Matrix3d B = AC::internal::hyperbolic_boost(p);
   BOOST_TEST(AC::internal::lorentz_defect(B) < 1e-12);
   BOOST_TEST((B.col(0) - p).norm() < 1e-12);
   const Eigen::Vector3d q = AC::internal::normalize_on_hyperboloid(p + Eigen::Vector3d(0, 4e-14, 0));
-  BOOST_TEST_MESSAGE("frame fitted to points 4e-14 apart: Lorentz defect " << AC::internal::lorentz_defect(AC::internal::hyperbolic_frame(p, q)));
+  for(const Eigen::Vector3d& o : {q, p, AC::internal::from_klein(Eigen::Vector2d(0.6 + 1e-16, -0.3))}) {
+    const Eigen::Matrix3d F = AC::internal::hyperbolic_frame(p, o);
+    BOOST_TEST(AC::internal::lorentz_defect(F) < 1e-9);
+    BOOST_TEST((F.col(0) - p).norm() < 1e-12);
+  }
+  // and a third point placed across such an edge lies at its distances (it could land 1.24 away)
+  const Eigen::Vector3d third = AC::internal::hyperbolic_third_point(p, q, 0.5, 0.5);
+  BOOST_TEST(std::abs(AC::internal::hyperbolic_distance(p, third) - 0.5) < 1e-9);
 }
