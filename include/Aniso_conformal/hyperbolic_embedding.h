@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -74,6 +75,14 @@ struct Hyperbolic_embedding {
 };
 
 namespace internal {
+
+// a length in the %g format (std::to_string writes 4e-14 as 0.000000)
+inline std::string short_number(double x)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 // Moves the layout by the boost that takes the mass centre of its corners to the apex (1, 0, 0).
 inline void centre_on_apex(std::vector<std::array<Eigen::Vector3d, 3>>& X)
@@ -134,25 +143,86 @@ inline std::vector<char> reduced_cut_graph(const Intrinsic_triangulation& itri, 
 // couplingdown's isotropic metric (radius 6.3, edges down to 0.016, relation error 1.7e-2) hanging
 // edges kept near-identity "deck transformations" whose images of a site lay 0.002 from it, and the
 // dual refused the triangle joining the two.
+// Such an edge is checked by the distances between its two copies of each end (the identity maps one
+// onto the other), no fitted isometry: two points within the rounding of each other determine no frame,
+// and the isometry fitted to an edge the metric shrinks to 4e-14 (CGAL's femur) had a Lorentz defect
+// of 1e-2 although the layout was right. An edge of the reduced cut graph shorter than
+// frame_min_length takes the isometry fitted to the two points farthest apart on its side of the cut
+// (the path between two vertices of degree 3 or more of that graph, whose edges all share one
+// pairing); a longer edge keeps the isometry fitted to itself.
 inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const Tree_cotree& tc, Hyperbolic_embedding& emb)
 {
+  const double frame_min_length = 1e-6;  // below this hyperbolic length an edge's frame is judged ill-conditioned
   const auto& X = emb.corner_hyperboloid;
-  const int nh = int(itri.number_of_halfedges());
+  const int nh = int(itri.number_of_halfedges()), nv = int(itri.number_of_vertices());
   emb.side_pairing.assign(std::size_t(nh), Eigen::Matrix3d::Identity());
   double lorentz = 0;
   const std::vector<char> cut = reduced_cut_graph(itri, tc);
+  auto tail_in = [&](int h) -> const Eigen::Vector3d& { return X[std::size_t(h / 3)][std::size_t(h % 3)]; };            // tail(h) in face(h)
+  auto head_in = [&](int h) -> const Eigen::Vector3d& { return X[std::size_t(h / 3)][std::size_t((h % 3 + 1) % 3)]; };  // head(h) in face(h)
+  // the sides of the reduced cut graph: chains of its halfedges through the vertices of degree 2
+  std::vector<int> degree(std::size_t(nv), 0);
+  for(int h = 0; h < nh; ++h)
+    if(cut[std::size_t(h)]) ++degree[std::size_t(itri.tail(h))];
+  std::vector<int> side_of(std::size_t(nh), -1);
+  std::vector<std::vector<int>> sides;
+  for(int pass = 0; pass < 2; ++pass)  // chains from a vertex of degree above 2 first, then any cycle left
+    for(int h0 = 0; h0 < nh; ++h0) {
+      if(!cut[std::size_t(h0)] || side_of[std::size_t(h0)] >= 0 || (pass == 0 && degree[std::size_t(itri.tail(h0))] == 2)) continue;
+      const int id = int(sides.size());
+      sides.emplace_back();
+      for(int k = h0; k >= 0 && side_of[std::size_t(k)] < 0;) {  // each halfedge joins one side once: bounded
+        side_of[std::size_t(k)] = id;
+        sides.back().push_back(k);
+        const int v = itri.head(k);
+        int next = -1;
+        if(degree[std::size_t(v)] == 2)
+          for(int o : itri.outgoing_halfedges(v))
+            if(cut[std::size_t(o)] && o != itri.twin(k)) next = o;
+        k = next;
+      }
+    }
+  // per side, the isometry fitted to its first point and the point of the side farthest from it
+  std::vector<Eigen::Matrix3d> side_fit(sides.size());
+  std::vector<char> side_fitted(sides.size(), 0);
+  double shortest_fit = std::numeric_limits<double>::infinity();  // for the message
+  auto fit_side = [&](int id) {
+    if(side_fitted[std::size_t(id)]) return;
+    const std::vector<int>& m = sides[std::size_t(id)];
+    const int h0 = m.front();
+    const Eigen::Vector3d& p = tail_in(h0);
+    const Eigen::Vector3d& p2 = head_in(itri.twin(h0));
+    int far = h0;
+    double far_d = -1;
+    for(int k : m) {
+      const double d = hyperbolic_distance(head_in(k), p);
+      if(d > far_d) far_d = d, far = k;
+    }
+    shortest_fit = std::min(shortest_fit, far_d);
+    side_fit[std::size_t(id)] = hyperbolic_frame(p, head_in(far)) * lorentz_inverse(hyperbolic_frame(p2, tail_in(itri.twin(far))));
+    side_fitted[std::size_t(id)] = 1;
+  };
   for(int h = 0; h < nh; ++h) {
     if(tc.in_cotree[std::size_t(h)]) continue;
     const int t = itri.twin(h);
-    const Eigen::Vector3d& a = X[std::size_t(h / 3)][std::size_t(h % 3)];            // tail(h) in face(h)
-    const Eigen::Vector3d& b = X[std::size_t(h / 3)][std::size_t((h % 3 + 1) % 3)];  // head(h) in face(h)
-    const Eigen::Vector3d& a2 = X[std::size_t(t / 3)][std::size_t((t % 3 + 1) % 3)];  // tail(h) = head(t) in face(t)
-    const Eigen::Vector3d& b2 = X[std::size_t(t / 3)][std::size_t(t % 3)];            // head(h) = tail(t) in face(t)
-    // the isometry fitted to the edge checks the layout on every edge of the cut, hanging or not
-    const Eigen::Matrix3d P = hyperbolic_frame(a, b) * lorentz_inverse(hyperbolic_frame(a2, b2));
+    const Eigen::Vector3d& a = tail_in(h);   // tail(h) in face(h)
+    const Eigen::Vector3d& b = head_in(h);   // head(h) in face(h)
+    const Eigen::Vector3d& a2 = head_in(t);  // tail(h) = head(t) in face(t)
+    const Eigen::Vector3d& b2 = tail_in(t);  // head(h) = tail(t) in face(t)
+    if(!cut[std::size_t(h)]) {  // a hanging edge: glued by the identity, checked by distances
+      emb.gluing_error = std::max({emb.gluing_error, hyperbolic_distance(a2, a), hyperbolic_distance(b2, b)});
+      continue;
+    }
+    Eigen::Matrix3d P;
+    if(hyperbolic_distance(a, b) >= frame_min_length && hyperbolic_distance(a2, b2) >= frame_min_length) {
+      P = hyperbolic_frame(a, b) * lorentz_inverse(hyperbolic_frame(a2, b2));
+    } else {
+      fit_side(side_of[std::size_t(h)]);
+      P = side_fit[std::size_t(side_of[std::size_t(h)])];
+    }
     lorentz = std::max(lorentz, lorentz_defect(P));
     emb.gluing_error = std::max({emb.gluing_error, hyperbolic_distance(P * a2, a), hyperbolic_distance(P * b2, b)});
-    emb.side_pairing[std::size_t(h)] = cut[std::size_t(h)] ? P : Eigen::Matrix3d::Identity();
+    emb.side_pairing[std::size_t(h)] = P;
   }
   for(int h : tc.generators) {
     emb.generators.push_back(emb.side_pairing[std::size_t(h)]);
@@ -187,7 +257,11 @@ inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const T
     throw Convergence_failure("hyperbolic embedding: the layout is inconsistent (Lorentz defect " + std::to_string(lorentz) +
                                   ", gluing error " + std::to_string(emb.gluing_error) + ", relation error " +
                                   std::to_string(emb.relation_error) + "; the fundamental domain reaches radius " +
-                                  std::to_string(emb.radius) + ", tolerances " + std::to_string(layout_tol) + " and 1e-6)",
+                                  std::to_string(emb.radius) + ", tolerances " + std::to_string(layout_tol) + " and 1e-6" +
+                                  (shortest_fit < frame_min_length
+                                       ? "; a side of the cut spans " + internal::short_number(shortest_fit) + " only, too short to fit its isometry"
+                                       : std::string()) +
+                                  ")",
                               std::max({lorentz, emb.gluing_error, emb.relation_error}));
 }
 
@@ -202,11 +276,13 @@ inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const T
  *    Pinkall and Springborn, with intrinsic Delaunay flips that keep the current hyperbolic metric;
  * 2. a homology basis by tree-cotree; the surface cut along the edges not in the cotree (a disk) is
  *    unfolded breadth-first on the hyperboloid, and given in the Klein and the Poincare disks;
- * 3. the deck transformation across every cut edge, from the two copies of the edge; those of the `2 g`
- *    generator edges generate the Fuchsian group;
- * 4. checks: each is a Lorentz matrix, each maps its edge onto its twin, and around every vertex the
- *    product of the transformations crossed is the identity (the relations of the group, Poincare's
- *    polygon theorem); the layout's area is `4 pi (g - 1)`;
+ * 3. the deck transformation across every cut edge, from the two copies of the edge (for an edge shorter
+ *    than `1e-6`, from the two points farthest apart on its side of the cut); the edges hanging from the
+ *    cut (outside the reduced cut graph) get the identity; those of the `2 g` generator edges generate
+ *    the Fuchsian group;
+ * 4. checks: each is a Lorentz matrix, each maps its edge onto its twin (a hanging edge: its two copies
+ *    coincide), and around every vertex the product of the transformations crossed is the identity (the
+ *    relations of the group, Poincare's polygon theorem); the layout's area is `4 pi (g - 1)`;
  * 5. the domain is moved by an isometry so that the mass centre of its corners is the centre of the disk.
  *
  * \param itri a closed triangulation of genus at least 2 with valid edge lengths (after

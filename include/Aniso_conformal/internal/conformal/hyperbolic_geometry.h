@@ -67,11 +67,39 @@ inline double lorentz_defect(const Eigen::Matrix3d& T)
   return (T.transpose() * j.asDiagonal() * T - Eigen::Matrix3d(j.asDiagonal())).cwiseAbs().maxCoeff();
 }
 
+// the pure boost (no rotation about the apex) taking the apex (1, 0, 0) to p: a Lorentz matrix for every
+// point p of the hyperboloid, with no second point to choose a direction from; hyperbolic_frame(p, q)
+// has none when q is within the rounding of p (a frame fitted to an edge the metric shrinks to 1e-14 is
+// no Lorentz matrix)
+inline Eigen::Matrix3d hyperbolic_boost(const Eigen::Vector3d& p)
+{
+  const double k = 1 / (1 + p.x());
+  Eigen::Matrix3d B;
+  B << p.x(), p.y(), p.z(),
+       p.y(), 1 + k * p.y() * p.y(), k * p.y() * p.z(),
+       p.z(), k * p.y() * p.z(), 1 + k * p.z() * p.z();
+  return B;
+}
+
 // the orientation-preserving isometry taking the apex (1, 0, 0) to p and the direction of the x1 axis
 // to the direction of q seen from p (p != q): its columns are p, the unit tangent towards q, and the
-// unit normal completing a positively oriented Minkowski-orthonormal frame
+// unit normal completing a positively oriented Minkowski-orthonormal frame. When q is nearer to p than
+// 1e-6, q - <p, q> p is mostly rounding and may not even be spacelike (its normalisation then made the
+// frame huge: a layout placed the far corner of a face with sides of 1e-15 on CGAL's femur, curvature
+// metric, 1.24 away from its other copy): the frame is then the boost to p rotated about p towards q,
+// a Lorentz matrix whatever the direction is worth.
 inline Eigen::Matrix3d hyperbolic_frame(const Eigen::Vector3d& p, const Eigen::Vector3d& q)
 {
+  if(!(hyperbolic_distance(p, q) >= 1e-6)) {
+    const Eigen::Matrix3d B = hyperbolic_boost(p);
+    const Eigen::Vector3d y = lorentz_inverse(B) * q;  // q seen from the apex
+    const double phi = std::atan2(y.z(), y.y());         // 0 when q is p
+    Eigen::Matrix3d R;
+    R << 1, 0, 0,
+         0, std::cos(phi), -std::sin(phi),
+         0, std::sin(phi), std::cos(phi);
+    return B * R;
+  }
   const double c = -minkowski_dot(p, q);
   Eigen::Vector3d e1 = q - c * p;  // Minkowski-orthogonal to p, spacelike
   e1 /= std::sqrt(std::max(1e-300, minkowski_dot(e1, e1)));
