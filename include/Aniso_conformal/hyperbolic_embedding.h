@@ -72,6 +72,9 @@ struct Hyperbolic_embedding {
   double gluing_error = 0;
   /// largest hyperbolic distance from the centre to a corner (how far the fundamental domain reaches)
   double radius = 0;
+  /// `Hyperbolic_domain::embed()`: the hyperbolic spacing that the requested number of sites would have
+  /// where the conformal metric shrinks the surface most (0 when not computed)
+  double smallest_site_spacing = 0;
 };
 
 namespace internal {
