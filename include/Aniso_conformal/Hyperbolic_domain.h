@@ -9,6 +9,7 @@
 #include <Aniso_conformal/Hyperbolic_klein_domain_traits.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/domains/domain_policy_base.h>
 #include <Aniso_conformal/hyperbolic_embedding.h>
 #include <Aniso_conformal/parameters.h>
@@ -61,6 +62,7 @@ struct Hyperbolic_domain : internal::Domain_policy_base<Hyperbolic_embedding, Hy
    * scale and log scale factors (an edge of metric length `L` has hyperbolic length about
    * `2 s exp(u) L` when short), and `u*` the least `u` whose sublevel set holds one site's share `A / n`
    * of the area (a third of each face's area to each corner), so that a lone vertex does not decide it.
+   * The patches closing a surface's holes hold no site and are left out.
    */
   static double smallest_site_spacing(const Intrinsic_triangulation& itri, const Embedding& emb, std::size_t n)
   {
@@ -68,9 +70,8 @@ struct Hyperbolic_domain : internal::Domain_policy_base<Hyperbolic_embedding, Hy
     std::vector<double> area(nv, 0.0);
     double total = 0;
     for(std::size_t f = 0; f < itri.number_of_faces(); ++f) {
-      const double a = itri.length(int(3 * f)), b = itri.length(int(3 * f + 1)), c = itri.length(int(3 * f + 2));
-      const double p = (a + b + c) / 2, q = p * (p - a) * (p - b) * (p - c);
-      const double af = q > 0 ? std::sqrt(q) : 0.0;
+      if(itri.is_patch_face(f)) continue;  // a hole's patch holds no site
+      const double af = internal::heron_area(itri.length(int(3 * f)), itri.length(int(3 * f + 1)), itri.length(int(3 * f + 2)));
       for(int v : itri.face_vertices(f)) area[std::size_t(v)] += af / 3;
       total += af;
     }
