@@ -291,7 +291,7 @@ public:
     std::vector<std::array<std::size_t, 3>> tris;
     for(const auto& k : kept) tris.push_back(k.second);
     close_holes_near_cones(tris, charts);
-    if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "dual: kept %zu, loops %zu conflicts %zu holes %zu filled %zu -> %zu\n", kept.size(), m_dual_repairs.loops, m_dual_repairs.conflicts, m_dual_repairs.holes, m_dual_repairs.filled, tris.size());
+    if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "dual: kept %zu, loops %zu conflicts %zu holes %zu filled %zu pinched %zu excised %zu -> %zu\n", kept.size(), m_dual_repairs.loops, m_dual_repairs.conflicts, m_dual_repairs.holes, m_dual_repairs.filled, m_dual_repairs.pinched, m_dual_repairs.excised, tris.size());
     const std::size_t expected = 2 * ns + 4 * std::size_t(m_emb->genus) - 4;
     std::map<std::pair<std::size_t, std::size_t>, int> directed;
     for(const auto& t : tris)
@@ -314,6 +314,7 @@ public:
     std::size_t holes = 0;      ///< holes filled
     std::size_t filled = 0;     ///< triangles added by the filling
     std::size_t pinched = 0;    ///< vertices where two filled holes met, mended
+    std::size_t excised = 0;    ///< rounds of removing and refilling the neighbourhoods of non-manifold vertices
   };
   /// the repairs of the last `dual_triangles()`
   const Dual_repairs& dual_repairs() const { return m_dual_repairs; }
@@ -395,49 +396,10 @@ private:
       else keep.push_back(t);
     }
     tris.swap(keep);
-    std::set<std::pair<std::size_t, std::size_t>> edges, open;
+    std::set<std::pair<std::size_t, std::size_t>> edges;
     for(const auto& t : tris)
       for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
-    std::map<std::size_t, std::vector<std::size_t>> next;  // the holes' edges, oriented as the missing triangles have them
-    for(const auto& e : edges)
-      if(!edges.count({e.second, e.first})) next[e.second].push_back(e.first);
-    // the holes' edges form cycles (each vertex has as many in as out); split them into simple cycles
-    std::vector<std::vector<std::size_t>> loops;
-    while(!next.empty()) {
-      std::vector<std::size_t> path{next.begin()->first};
-      std::map<std::size_t, std::size_t> at{{path.front(), 0}};
-      while(true) {
-        auto it = next.find(path.back());
-        if(it == next.end()) break;
-        // where the hole touches itself at v, the exit that bounds the same side (the hole on the left): the
-        // first one clockwise from the way back, about v's normal
-        std::size_t pick = it->second.size() - 1;
-        if(it->second.size() > 1 && path.size() > 1) {
-          const std::size_t v = path.back(), u = path[path.size() - 2];
-          const Eigen::Vector3d n = vertex_normal(v, tris), xv = site_position(v), back = site_position(u) - xv;
-          double least = 1e300;
-          for(std::size_t j = 0; j < it->second.size(); ++j) {
-            const Eigen::Vector3d out = site_position(it->second[j]) - xv;
-            double ccw = std::atan2(n.dot(back.cross(out)), back.dot(out));
-            if(ccw < 0) ccw += 2 * 3.14159265358979323846;
-            const double cw = 2 * 3.14159265358979323846 - ccw;
-            if(cw < least) least = cw, pick = j;
-          }
-        }
-        const std::size_t w = it->second[pick];
-        it->second.erase(it->second.begin() + std::ptrdiff_t(pick));
-        if(it->second.empty()) next.erase(it);
-        const auto seen = at.find(w);
-        if(seen == at.end()) {
-          at[w] = path.size();
-          path.push_back(w);
-          continue;
-        }
-        loops.emplace_back(path.begin() + std::ptrdiff_t(seen->second), path.end());
-        for(std::size_t j = seen->second + 1; j < path.size(); ++j) at.erase(path[j]);
-        path.resize(seen->second + 1);
-      }
-    }
+    const std::vector<std::vector<std::size_t>> loops = hole_loops(tris);
     // A site in no triangle (at the tip of a sharp cone every Delaunay triangle joins it to its own copy)
     // lies in the hole that most of its Delaunay neighbours (in its own chart) bound.
     std::map<std::size_t, std::size_t> loop_of;
@@ -480,6 +442,187 @@ private:
     }
     if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "stray %zu\n", stray);
     unpinch_vertices(tris);
+    excise_and_refill(tris);
+  }
+
+  // The vertices where `tris` is not one closed surface: a link that is not one closed cycle (an oriented
+  // edge twice, a hole's border, or a pinch where two charts each claimed a whole umbrella next to a cone),
+  // or a triangle apart from the largest piece.
+  // A site in no triangle at all brings in its nearest site that has some.
+  std::set<std::size_t> vertices_without_disk_link(const std::vector<std::array<std::size_t, 3>>& tris) const
+  {
+    std::map<std::size_t, std::map<std::size_t, std::size_t>> link;  // v -> (a -> b) for triangles (v, a, b)
+    std::set<std::size_t> bad;
+    for(const auto& t : tris)
+      for(int k = 0; k < 3; ++k) {
+        auto& l = link[t[std::size_t(k)]];
+        if(!l.emplace(t[std::size_t((k + 1) % 3)], t[std::size_t((k + 2) % 3)]).second) bad.insert(t[std::size_t(k)]);
+      }
+    for(const auto& l : link) {
+      std::size_t a = l.second.begin()->first, steps = 0;
+      do {
+        const auto it = l.second.find(a);
+        if(it == l.second.end()) break;
+        a = it->second;
+        ++steps;
+      } while(a != l.second.begin()->first && steps <= l.second.size());
+      if(a != l.second.begin()->first || steps != l.second.size()) bad.insert(l.first);
+    }
+    // a closed pocket apart from the rest (two charts' umbrellas around a cone closing on each other): all
+    // its vertices, whatever their links; the surface is the largest piece joined through edges
+    std::vector<std::size_t> piece(tris.size());
+    for(std::size_t i = 0; i < tris.size(); ++i) piece[i] = i;
+    std::function<std::size_t(std::size_t)> root = [&](std::size_t i) { return piece[i] == i ? i : piece[i] = root(piece[i]); };
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> first_with_edge;
+    for(std::size_t i = 0; i < tris.size(); ++i)
+      for(int k = 0; k < 3; ++k) {
+        const auto e = std::minmax(tris[i][std::size_t(k)], tris[i][std::size_t((k + 1) % 3)]);
+        const auto it = first_with_edge.emplace(e, i).first;
+        piece[root(i)] = root(it->second);
+      }
+    std::map<std::size_t, std::size_t> piece_size;
+    for(std::size_t i = 0; i < tris.size(); ++i) ++piece_size[root(i)];
+    std::size_t largest = 0, largest_size = 0;
+    for(const auto& ps : piece_size)
+      if(ps.second > largest_size) largest_size = ps.second, largest = ps.first;
+    for(std::size_t i = 0; i < tris.size(); ++i)
+      if(root(i) != largest) bad.insert(tris[i].begin(), tris[i].end());
+    for(std::size_t v = 0; v < m_state.size(); ++v) {
+      if(link.count(v)) continue;
+      const Eigen::Vector3d p = site_position(v);
+      std::size_t nearest = std::size_t(-1);
+      double d = 1e300;
+      for(const auto& l : link)
+        if((site_position(l.first) - p).squaredNorm() < d) d = (site_position(l.first) - p).squaredNorm(), nearest = l.first;
+      if(nearest != std::size_t(-1)) bad.insert(nearest);
+    }
+    return bad;
+  }
+
+  // Where the repairs above still leave vertices without a disk around them, the charts' views of that
+  // neighbourhood cannot be reconciled triangle by triangle: every triangle within `ring` rings of such a
+  // vertex is removed, and each hole left is refilled with the sites it swallowed by a constrained Delaunay
+  // triangulation in the hole's plane (else a fan from one of them, else ears). The ring grows (up to 6)
+  // while some vertex is still bad; what is left then makes `dual_triangles()` throw.
+  void excise_and_refill(std::vector<std::array<std::size_t, 3>>& tris) const
+  {
+    for(int ring = 1; ring <= 6; ++ring) {
+      const std::set<std::size_t> bad = vertices_without_disk_link(tris);
+      if(bad.empty()) return;
+      ++m_dual_repairs.excised;
+      std::map<std::size_t, std::set<std::size_t>> adj;
+      for(const auto& t : tris)
+        for(int k = 0; k < 3; ++k) {
+          adj[t[std::size_t(k)]].insert(t[std::size_t((k + 1) % 3)]);
+          adj[t[std::size_t((k + 1) % 3)]].insert(t[std::size_t(k)]);
+        }
+      std::set<std::size_t> region = bad;
+      for(int r = 0; r < ring; ++r) {
+        std::set<std::size_t> grown = region;
+        for(std::size_t v : region)
+          for(std::size_t w : adj[v]) grown.insert(w);
+        region.swap(grown);
+      }
+      std::vector<std::array<std::size_t, 3>> rest;
+      for(const auto& t : tris)
+        if(!region.count(t[0]) && !region.count(t[1]) && !region.count(t[2])) rest.push_back(t);
+      tris.swap(rest);
+      std::vector<char> used(m_state.size(), 0);
+      for(const auto& t : tris)
+        for(std::size_t v : t) used[v] = 1;
+      const std::vector<std::vector<std::size_t>> loops = hole_loops(tris);
+      std::map<std::size_t, std::size_t> loop_of;
+      for(std::size_t l = 0; l < loops.size(); ++l)
+        for(std::size_t w : loops[l]) loop_of[w] = l;
+      // a pocket removed whole leaves no hole: its sites, now in no triangle, open one at the next round
+      if(loops.empty()) continue;
+      // each swallowed site goes to the hole it reaches first along the removed edges (the nearest border
+      // site in space if it was in no triangle)
+      std::vector<std::vector<std::size_t>> inside(loops.size());
+      for(std::size_t v = 0; v < m_state.size(); ++v) {
+        if(used[v]) continue;
+        std::size_t hole = std::size_t(-1);
+        std::set<std::size_t> seen{v};
+        std::vector<std::size_t> front{v};
+        while(hole == std::size_t(-1) && !front.empty()) {
+          std::vector<std::size_t> next;
+          for(std::size_t u : front)
+            for(std::size_t w : adj[u]) {
+              if(!seen.insert(w).second) continue;
+              const auto it = loop_of.find(w);
+              if(it != loop_of.end() && hole == std::size_t(-1)) hole = it->second;
+              next.push_back(w);
+            }
+          front.swap(next);
+        }
+        if(hole == std::size_t(-1)) {
+          const Eigen::Vector3d p = site_position(v);
+          double d = 1e300;
+          for(const auto& lw : loop_of)
+            if((site_position(lw.first) - p).squaredNorm() < d) d = (site_position(lw.first) - p).squaredNorm(), hole = lw.second;
+        }
+        inside[hole].push_back(v);
+      }
+      std::set<std::pair<std::size_t, std::size_t>> edges;
+      for(const auto& t : tris)
+        for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
+      for(std::size_t l = 0; l < loops.size(); ++l) {
+        if(loops[l].size() < 3) continue;
+        const bool projected = fill_hole_by_projection(loops[l], inside[l], edges, tris);
+        if(!projected && inside[l].empty()) fill_hole_by_ears(loops[l], edges, tris);
+        if(!projected && !inside[l].empty()) fill_hole_by_fan(loops[l], inside[l], tris);
+        if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "excised ring %d hole %zu: size %zu, inside %zu, projected %d\n", ring, l, loops[l].size(), inside[l].size(), int(projected));
+      }
+    }
+  }
+
+  // The holes of `tris` as simple cycles, each oriented as its missing triangles have their edges
+  std::vector<std::vector<std::size_t>> hole_loops(const std::vector<std::array<std::size_t, 3>>& tris) const
+  {
+    std::set<std::pair<std::size_t, std::size_t>> edges;
+    for(const auto& t : tris)
+      for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
+    std::map<std::size_t, std::vector<std::size_t>> next;  // the holes' edges, oriented as the missing triangles have them
+    for(const auto& e : edges)
+      if(!edges.count({e.second, e.first})) next[e.second].push_back(e.first);
+    // the holes' edges form cycles (each vertex has as many in as out); split them into simple cycles
+    std::vector<std::vector<std::size_t>> loops;
+    while(!next.empty()) {
+      std::vector<std::size_t> path{next.begin()->first};
+      std::map<std::size_t, std::size_t> at{{path.front(), 0}};
+      while(true) {
+        auto it = next.find(path.back());
+        if(it == next.end()) break;
+        // where the hole touches itself at v, the exit that bounds the same side (the hole on the left): the
+        // first one clockwise from the way back, about v's normal
+        std::size_t pick = it->second.size() - 1;
+        if(it->second.size() > 1 && path.size() > 1) {
+          const std::size_t v = path.back(), u = path[path.size() - 2];
+          const Eigen::Vector3d n = vertex_normal(v, tris), xv = site_position(v), back = site_position(u) - xv;
+          double least = 1e300;
+          for(std::size_t j = 0; j < it->second.size(); ++j) {
+            const Eigen::Vector3d out = site_position(it->second[j]) - xv;
+            double ccw = std::atan2(n.dot(back.cross(out)), back.dot(out));
+            if(ccw < 0) ccw += 2 * 3.14159265358979323846;
+            const double cw = 2 * 3.14159265358979323846 - ccw;
+            if(cw < least) least = cw, pick = j;
+          }
+        }
+        const std::size_t w = it->second[pick];
+        it->second.erase(it->second.begin() + std::ptrdiff_t(pick));
+        if(it->second.empty()) next.erase(it);
+        const auto seen = at.find(w);
+        if(seen == at.end()) {
+          at[w] = path.size();
+          path.push_back(w);
+          continue;
+        }
+        loops.emplace_back(path.begin() + std::ptrdiff_t(seen->second), path.end());
+        for(std::size_t j = seen->second + 1; j < path.size(); ++j) at.erase(path[j]);
+        path.resize(seen->second + 1);
+      }
+    }
+    return loops;
   }
 
   // A vertex whose link is several cycles (two holes met there and were filled apart): its triangles are
