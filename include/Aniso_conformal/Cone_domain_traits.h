@@ -8,13 +8,11 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/cone_embedding.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
+#include <Aniso_conformal/internal/domains/cone_surface_delaunay.h>
 #include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 #include <Aniso_conformal/internal/parallel_for.h>
 
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_2_algorithms.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -24,11 +22,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <map>
 #include <queue>
 #include <random>
-#include <set>
 #include <unordered_map>
 #include <string>
 #include <utility>
@@ -62,9 +58,14 @@ namespace Aniso_conformal {
  * `2 pi`), so a cone of angle below `2 pi` is seen from both sides and one above `2 pi` over a turn at most
  * (the cells next to a cone of negative curvature are then approximate within a site spacing of it).
  *
- * **Dual.** A Delaunay triangle of a chart is kept where its circumcentre lies in one of the chart's own
- * faces; the triangles of all the charts, each once, must form a closed triangulation of the genus of the
- * surface (`2 n + 4 g - 4` triangles, each edge shared by two), or `dual_triangles()` throws.
+ * **Dual.** Not from the charts (whose Euclidean Delaunay triangles disagree next to a cone of negative
+ * curvature) but intrinsically, so that it is one triangulation of the surface by construction
+ * (`internal::Cone_surface_delaunay`): the sites are inserted into the background's faces in the cone
+ * metric, the triangulation is flipped to intrinsic Delaunay (Bobenko and Springborn 2007), the flat
+ * background vertices are removed (their unfolded stars triangulated again; Sharp, Soliman and Crane 2019),
+ * flipped again, and each cone is merged into its nearest neighbouring site. The result must be a closed
+ * triangulation of the genus of the surface (`2 n + 4 g - 4` triangles, each edge shared by two), or
+ * `dual_triangles()` throws.
  *
  * \cgalModels `ParametricDomainTraits`
  */
@@ -130,6 +131,12 @@ public:
     m_tolerance = 1e-9 * longest;
     m_is_cone.assign(itri.number_of_vertices(), 0);
     for(int v : emb.cones) m_is_cone[std::size_t(v)] = 1;
+    m_faces.resize(nf);
+    m_twin.resize(3 * nf);
+    for(std::size_t f = 0; f < nf; ++f) {
+      m_faces[f] = itri.face_vertices(f);
+      for(int k = 0; k < 3; ++k) m_twin[3 * f + std::size_t(k)] = itri.twin(int(3 * f) + k);
+    }
   }
   /// @}
 
@@ -263,35 +270,12 @@ public:
   std::vector<std::array<std::size_t, 3>> dual_triangles(const std::vector<Point>& sites) const
   {
     move_sites(sites);
-    m_dual_repairs = Dual_repairs();
     const std::size_t ns = sites.size();
-    const std::vector<Chart_points> charts = chart_points();
-    std::map<std::array<std::size_t, 3>, std::array<std::size_t, 3>> kept;
-    for(std::size_t c = 0; c < m_chart.size(); ++c) {
-      const Chart_points& cp = charts[c];
-      for(std::size_t i = 0; i < cp.own; ++i)
-        if(!cp.dt.has_vertex(i))
-          throw Convergence_failure("dual mesh: site " + std::to_string(cp.original[i]) + " coincides with another site on the cone surface", 0);
-      for(auto f = cp.dt.dt.finite_faces_begin(); f != cp.dt.dt.finite_faces_end(); ++f) {
-        const auto cc = cp.dt.dt.circumcenter(f);
-        int index = -1;
-        Eigen::Vector3d bary;
-        if(!m_chart[c].grid.locate(m_chart[c].tri, Eigen::Vector2d(cc.x(), cc.y()), index, bary, 1e-9)) continue;
-        std::array<std::size_t, 3> t;
-        for(int k = 0; k < 3; ++k) t[std::size_t(k)] = std::size_t(cp.original[std::size_t(f->vertex(k)->info())]);
-        if(t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
-          ++m_dual_repairs.loops;  // a site joined to its own copy around a sharp cone: left to the hole filling
-          continue;
-        }
-        std::array<std::size_t, 3> key = t;
-        std::sort(key.begin(), key.end());
-        kept.emplace(key, t);
-      }
-    }
-    std::vector<std::array<std::size_t, 3>> tris;
-    for(const auto& k : kept) tris.push_back(k.second);
-    close_holes_near_cones(tris, charts);
-    if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "dual: kept %zu, loops %zu conflicts %zu holes %zu filled %zu pinched %zu excised %zu -> %zu\n", kept.size(), m_dual_repairs.loops, m_dual_repairs.conflicts, m_dual_repairs.holes, m_dual_repairs.filled, m_dual_repairs.pinched, m_dual_repairs.excised, tris.size());
+    std::vector<internal::Cone_surface_delaunay::Point_on_face> points(ns);
+    for(std::size_t i = 0; i < ns; ++i) points[i].face = m_state[i].face, points[i].x = m_state[i].x;
+    internal::Cone_surface_delaunay delaunay(m_faces, m_twin, m_emb->corner_uv, m_is_cone);
+    std::vector<std::array<std::size_t, 3>> tris = delaunay.triangulate(points);
+    m_dual_statistics = delaunay.statistics();
     const std::size_t expected = 2 * ns + 4 * std::size_t(m_emb->genus) - 4;
     std::map<std::pair<std::size_t, std::size_t>, int> directed;
     for(const auto& t : tris)
@@ -300,24 +284,15 @@ public:
     for(const auto& e : directed)
       if(e.second != 1 || directed.count({e.first.second, e.first.first}) == 0) ++unmatched;
     if(tris.size() != expected || unmatched > 0)
-      throw Convergence_failure("dual mesh: the Delaunay triangles of the cone surface's charts do not close up (" + std::to_string(tris.size()) +
-                                    " triangles instead of " + std::to_string(expected) + ", " + std::to_string(unmatched) +
-                                    " edges not shared by two)",
+      throw Convergence_failure("dual mesh: the Delaunay triangulation of the sites on the cone surface is not a simple closed mesh (" +
+                                    std::to_string(tris.size()) + " triangles instead of " + std::to_string(expected) + ", " +
+                                    std::to_string(unmatched) + " edges not shared by two triangles: too few sites for the cones)",
                                 double(unmatched));
     return tris;
   }
 
-  /// what `dual_triangles()` mended where the charts' Delaunay triangles did not close up (near cones)
-  struct Dual_repairs {
-    std::size_t loops = 0;      ///< Delaunay triangles joining a site to its own copy (around a sharp cone), dropped
-    std::size_t conflicts = 0;  ///< triangles dropped because another already had one of their oriented edges
-    std::size_t holes = 0;      ///< holes filled
-    std::size_t filled = 0;     ///< triangles added by the filling
-    std::size_t pinched = 0;    ///< vertices where two filled holes met, mended
-    std::size_t excised = 0;    ///< rounds of removing and refilling the neighbourhoods of non-manifold vertices
-  };
-  /// the repairs of the last `dual_triangles()`
-  const Dual_repairs& dual_repairs() const { return m_dual_repairs; }
+  /// what the last `dual_triangles()` did: Delaunay flips, flat background vertices removed, vertices (the cones) merged into a site
+  const internal::Cone_surface_delaunay::Statistics& dual_statistics() const { return m_dual_statistics; }
   /// @}
 
 private:
@@ -356,471 +331,6 @@ private:
     const double det = e1.x() * e2.y() - e1.y() * e2.x();
     const double b1 = (w.x() * e2.y() - w.y() * e2.x()) / det, b2 = (e1.x() * w.y() - e1.y() * w.x()) / det;
     return Eigen::Vector3d(1 - b1 - b2, b1, b2);
-  }
-
-  // the area-weighted normal of the triangles at site v (of `tris`)
-  Eigen::Vector3d vertex_normal(std::size_t v, const std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    Eigen::Vector3d n = Eigen::Vector3d::Zero();
-    for(const auto& t : tris)
-      if(t[0] == v || t[1] == v || t[2] == v) {
-        const Eigen::Vector3d a = site_position(t[0]), b = site_position(t[1]), c = site_position(t[2]);
-        n += (b - a).cross(c - a);
-      }
-    return n;
-  }
-
-  // the site's position in space: its barycentric coordinates on the background's chords
-  Eigen::Vector3d site_position(std::size_t i) const
-  {
-    const Site_state& st = m_state[i];
-    const Eigen::Vector3d b = barycentric(m_emb->corner_uv[std::size_t(st.face)], st.x);
-    const auto& v = m_itri->face_vertices(std::size_t(st.face));
-    return b[0] * m_itri->position(v[0]) + b[1] * m_itri->position(v[1]) + b[2] * m_itri->position(v[2]);
-  }
-
-  // Where the charts' triangles do not close up (a sharp cone inside a triangle, cells that disagree next to
-  // a cone): drops the triangles that repeat an oriented edge, then fills every hole left by ear clipping
-  // in space, the ear of largest smallest angle first (never an edge the mesh has). A hole pinched at a
-  // vertex is left (the count check then throws).
-  void close_holes_near_cones(std::vector<std::array<std::size_t, 3>>& tris, const std::vector<Chart_points>& charts) const
-  {
-    std::map<std::pair<std::size_t, std::size_t>, int> directed;
-    for(const auto& t : tris)
-      for(int k = 0; k < 3; ++k) ++directed[{t[std::size_t(k)], t[std::size_t((k + 1) % 3)]}];
-    std::vector<std::array<std::size_t, 3>> keep;
-    for(const auto& t : tris) {
-      bool repeated = false;
-      for(int k = 0; k < 3; ++k) repeated = repeated || directed[{t[std::size_t(k)], t[std::size_t((k + 1) % 3)]}] > 1;
-      if(repeated) ++m_dual_repairs.conflicts;
-      else keep.push_back(t);
-    }
-    tris.swap(keep);
-    std::set<std::pair<std::size_t, std::size_t>> edges;
-    for(const auto& t : tris)
-      for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
-    const std::vector<std::vector<std::size_t>> loops = hole_loops(tris);
-    // A site in no triangle (at the tip of a sharp cone every Delaunay triangle joins it to its own copy)
-    // lies in the hole that most of its Delaunay neighbours (in its own chart) bound.
-    std::map<std::size_t, std::size_t> loop_of;
-    for(std::size_t l = 0; l < loops.size(); ++l)
-      for(std::size_t w : loops[l]) loop_of[w] = l;
-    std::vector<char> used(m_state.size(), 0);
-    for(const auto& t : tris)
-      for(std::size_t v : t) used[v] = 1;
-    std::vector<std::vector<std::size_t>> inside(loops.size());
-    std::size_t stray = 0;
-    for(std::size_t v = 0; v < used.size(); ++v) {
-      if(used[v]) continue;
-      const Chart_points& cp = charts[std::size_t(m_emb->chart_of_face[std::size_t(m_state[v].face)])];
-      std::map<std::size_t, int> votes;
-      for(std::size_t i = 0; i < cp.own; ++i) {
-        if(std::size_t(cp.original[i]) != v || !cp.dt.has_vertex(i)) continue;
-        auto c = cp.dt.dt.incident_vertices(cp.dt.handle[i]), done = c;
-        do {
-          if(cp.dt.dt.is_infinite(c)) continue;
-          const auto it = loop_of.find(std::size_t(cp.original[std::size_t(c->info())]));
-          if(it != loop_of.end()) ++votes[it->second];
-        } while(++c != done);
-      }
-      if(votes.empty()) {
-        ++stray;
-        continue;
-      }
-      const auto best = std::max_element(votes.begin(), votes.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
-      inside[best->first].push_back(v);
-    }
-    for(std::size_t l = 0; l < loops.size(); ++l) {
-      if(loops[l].size() < 3) continue;
-      ++m_dual_repairs.holes;
-      const std::size_t before = tris.size();
-      const bool projected = fill_hole_by_projection(loops[l], inside[l], edges, tris);
-      if(!projected && inside[l].empty()) fill_hole_by_ears(loops[l], edges, tris);
-      if(!projected && !inside[l].empty()) fill_hole_by_fan(loops[l], inside[l], tris);
-      if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "hole %zu: size %zu, inside %zu, projected %d\n", l, loops[l].size(), inside[l].size(), int(projected));
-      m_dual_repairs.filled += tris.size() - before;
-    }
-    if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "stray %zu\n", stray);
-    unpinch_vertices(tris);
-    excise_and_refill(tris);
-  }
-
-  // The vertices where `tris` is not one closed surface: a link that is not one closed cycle (an oriented
-  // edge twice, a hole's border, or a pinch where two charts each claimed a whole umbrella next to a cone),
-  // or a triangle apart from the largest piece.
-  // A site in no triangle at all brings in its nearest site that has some.
-  std::set<std::size_t> vertices_without_disk_link(const std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    std::map<std::size_t, std::map<std::size_t, std::size_t>> link;  // v -> (a -> b) for triangles (v, a, b)
-    std::set<std::size_t> bad;
-    for(const auto& t : tris)
-      for(int k = 0; k < 3; ++k) {
-        auto& l = link[t[std::size_t(k)]];
-        if(!l.emplace(t[std::size_t((k + 1) % 3)], t[std::size_t((k + 2) % 3)]).second) bad.insert(t[std::size_t(k)]);
-      }
-    for(const auto& l : link) {
-      std::size_t a = l.second.begin()->first, steps = 0;
-      do {
-        const auto it = l.second.find(a);
-        if(it == l.second.end()) break;
-        a = it->second;
-        ++steps;
-      } while(a != l.second.begin()->first && steps <= l.second.size());
-      if(a != l.second.begin()->first || steps != l.second.size()) bad.insert(l.first);
-    }
-    // a closed pocket apart from the rest (two charts' umbrellas around a cone closing on each other): all
-    // its vertices, whatever their links; the surface is the largest piece joined through edges
-    std::vector<std::size_t> piece(tris.size());
-    for(std::size_t i = 0; i < tris.size(); ++i) piece[i] = i;
-    std::function<std::size_t(std::size_t)> root = [&](std::size_t i) { return piece[i] == i ? i : piece[i] = root(piece[i]); };
-    std::map<std::pair<std::size_t, std::size_t>, std::size_t> first_with_edge;
-    for(std::size_t i = 0; i < tris.size(); ++i)
-      for(int k = 0; k < 3; ++k) {
-        const auto e = std::minmax(tris[i][std::size_t(k)], tris[i][std::size_t((k + 1) % 3)]);
-        const auto it = first_with_edge.emplace(e, i).first;
-        piece[root(i)] = root(it->second);
-      }
-    std::map<std::size_t, std::size_t> piece_size;
-    for(std::size_t i = 0; i < tris.size(); ++i) ++piece_size[root(i)];
-    std::size_t largest = 0, largest_size = 0;
-    for(const auto& ps : piece_size)
-      if(ps.second > largest_size) largest_size = ps.second, largest = ps.first;
-    for(std::size_t i = 0; i < tris.size(); ++i)
-      if(root(i) != largest) bad.insert(tris[i].begin(), tris[i].end());
-    for(std::size_t v = 0; v < m_state.size(); ++v) {
-      if(link.count(v)) continue;
-      const Eigen::Vector3d p = site_position(v);
-      std::size_t nearest = std::size_t(-1);
-      double d = 1e300;
-      for(const auto& l : link)
-        if((site_position(l.first) - p).squaredNorm() < d) d = (site_position(l.first) - p).squaredNorm(), nearest = l.first;
-      if(nearest != std::size_t(-1)) bad.insert(nearest);
-    }
-    return bad;
-  }
-
-  // Where the repairs above still leave vertices without a disk around them, the charts' views of that
-  // neighbourhood cannot be reconciled triangle by triangle: every triangle within `ring` rings of such a
-  // vertex is removed, and each hole left is refilled with the sites it swallowed by a constrained Delaunay
-  // triangulation in the hole's plane (else a fan from one of them, else ears). The ring grows (up to 6)
-  // while some vertex is still bad; what is left then makes `dual_triangles()` throw.
-  void excise_and_refill(std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    for(int ring = 1; ring <= 6; ++ring) {
-      const std::set<std::size_t> bad = vertices_without_disk_link(tris);
-      if(bad.empty()) return;
-      ++m_dual_repairs.excised;
-      std::map<std::size_t, std::set<std::size_t>> adj;
-      for(const auto& t : tris)
-        for(int k = 0; k < 3; ++k) {
-          adj[t[std::size_t(k)]].insert(t[std::size_t((k + 1) % 3)]);
-          adj[t[std::size_t((k + 1) % 3)]].insert(t[std::size_t(k)]);
-        }
-      std::set<std::size_t> region = bad;
-      for(int r = 0; r < ring; ++r) {
-        std::set<std::size_t> grown = region;
-        for(std::size_t v : region)
-          for(std::size_t w : adj[v]) grown.insert(w);
-        region.swap(grown);
-      }
-      std::vector<std::array<std::size_t, 3>> rest;
-      for(const auto& t : tris)
-        if(!region.count(t[0]) && !region.count(t[1]) && !region.count(t[2])) rest.push_back(t);
-      tris.swap(rest);
-      std::vector<char> used(m_state.size(), 0);
-      for(const auto& t : tris)
-        for(std::size_t v : t) used[v] = 1;
-      const std::vector<std::vector<std::size_t>> loops = hole_loops(tris);
-      std::map<std::size_t, std::size_t> loop_of;
-      for(std::size_t l = 0; l < loops.size(); ++l)
-        for(std::size_t w : loops[l]) loop_of[w] = l;
-      // a pocket removed whole leaves no hole: its sites, now in no triangle, open one at the next round
-      if(loops.empty()) continue;
-      // each swallowed site goes to the hole it reaches first along the removed edges (the nearest border
-      // site in space if it was in no triangle)
-      std::vector<std::vector<std::size_t>> inside(loops.size());
-      for(std::size_t v = 0; v < m_state.size(); ++v) {
-        if(used[v]) continue;
-        std::size_t hole = std::size_t(-1);
-        std::set<std::size_t> seen{v};
-        std::vector<std::size_t> front{v};
-        while(hole == std::size_t(-1) && !front.empty()) {
-          std::vector<std::size_t> next;
-          for(std::size_t u : front)
-            for(std::size_t w : adj[u]) {
-              if(!seen.insert(w).second) continue;
-              const auto it = loop_of.find(w);
-              if(it != loop_of.end() && hole == std::size_t(-1)) hole = it->second;
-              next.push_back(w);
-            }
-          front.swap(next);
-        }
-        if(hole == std::size_t(-1)) {
-          const Eigen::Vector3d p = site_position(v);
-          double d = 1e300;
-          for(const auto& lw : loop_of)
-            if((site_position(lw.first) - p).squaredNorm() < d) d = (site_position(lw.first) - p).squaredNorm(), hole = lw.second;
-        }
-        inside[hole].push_back(v);
-      }
-      std::set<std::pair<std::size_t, std::size_t>> edges;
-      for(const auto& t : tris)
-        for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
-      for(std::size_t l = 0; l < loops.size(); ++l) {
-        if(loops[l].size() < 3) continue;
-        const bool projected = fill_hole_by_projection(loops[l], inside[l], edges, tris);
-        if(!projected && inside[l].empty()) fill_hole_by_ears(loops[l], edges, tris);
-        if(!projected && !inside[l].empty()) fill_hole_by_fan(loops[l], inside[l], tris);
-        if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "excised ring %d hole %zu: size %zu, inside %zu, projected %d\n", ring, l, loops[l].size(), inside[l].size(), int(projected));
-      }
-    }
-  }
-
-  // The holes of `tris` as simple cycles, each oriented as its missing triangles have their edges
-  std::vector<std::vector<std::size_t>> hole_loops(const std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    std::set<std::pair<std::size_t, std::size_t>> edges;
-    for(const auto& t : tris)
-      for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
-    std::map<std::size_t, std::vector<std::size_t>> next;  // the holes' edges, oriented as the missing triangles have them
-    for(const auto& e : edges)
-      if(!edges.count({e.second, e.first})) next[e.second].push_back(e.first);
-    // the holes' edges form cycles (each vertex has as many in as out); split them into simple cycles
-    std::vector<std::vector<std::size_t>> loops;
-    while(!next.empty()) {
-      std::vector<std::size_t> path{next.begin()->first};
-      std::map<std::size_t, std::size_t> at{{path.front(), 0}};
-      while(true) {
-        auto it = next.find(path.back());
-        if(it == next.end()) break;
-        // where the hole touches itself at v, the exit that bounds the same side (the hole on the left): the
-        // first one clockwise from the way back, about v's normal
-        std::size_t pick = it->second.size() - 1;
-        if(it->second.size() > 1 && path.size() > 1) {
-          const std::size_t v = path.back(), u = path[path.size() - 2];
-          const Eigen::Vector3d n = vertex_normal(v, tris), xv = site_position(v), back = site_position(u) - xv;
-          double least = 1e300;
-          for(std::size_t j = 0; j < it->second.size(); ++j) {
-            const Eigen::Vector3d out = site_position(it->second[j]) - xv;
-            double ccw = std::atan2(n.dot(back.cross(out)), back.dot(out));
-            if(ccw < 0) ccw += 2 * 3.14159265358979323846;
-            const double cw = 2 * 3.14159265358979323846 - ccw;
-            if(cw < least) least = cw, pick = j;
-          }
-        }
-        const std::size_t w = it->second[pick];
-        it->second.erase(it->second.begin() + std::ptrdiff_t(pick));
-        if(it->second.empty()) next.erase(it);
-        const auto seen = at.find(w);
-        if(seen == at.end()) {
-          at[w] = path.size();
-          path.push_back(w);
-          continue;
-        }
-        loops.emplace_back(path.begin() + std::ptrdiff_t(seen->second), path.end());
-        for(std::size_t j = seen->second + 1; j < path.size(); ++j) at.erase(path[j]);
-        path.resize(seen->second + 1);
-      }
-    }
-    return loops;
-  }
-
-  // A vertex whose link is several cycles (two holes met there and were filled apart): its triangles are
-  // removed, each cycle filled without it by ear clipping, and it is put back by splitting the filled
-  // triangle nearest to it. At most 64 vertices are mended (the count check then throws if any is left).
-  void unpinch_vertices(std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    for(int round = 0; round < 64; ++round) {
-      std::map<std::size_t, std::map<std::size_t, std::size_t>> link;  // v -> (a -> b) for triangles (v, a, b)
-      for(const auto& t : tris)
-        for(int k = 0; k < 3; ++k) link[t[std::size_t(k)]][t[std::size_t((k + 1) % 3)]] = t[std::size_t((k + 2) % 3)];
-      std::size_t pinched = std::size_t(-1);
-      std::vector<std::vector<std::size_t>> cycles;
-      for(const auto& l : link) {
-        std::map<std::size_t, std::size_t> next = l.second;
-        cycles.clear();
-        while(!next.empty()) {
-          std::vector<std::size_t> c{next.begin()->first};
-          for(std::size_t guard = 0; guard <= l.second.size(); ++guard) {
-            const auto it = next.find(c.back());
-            if(it == next.end()) break;
-            const std::size_t w = it->second;
-            next.erase(it);
-            if(w == c.front()) break;
-            c.push_back(w);
-          }
-          cycles.push_back(c);
-        }
-        if(cycles.size() > 1) {
-          pinched = l.first;
-          break;
-        }
-      }
-      if(pinched == std::size_t(-1)) return;
-      if(std::getenv("CONE_DEBUG")) { std::fprintf(stderr, "pinched %zu:", pinched); for(auto& c : cycles) std::fprintf(stderr, " %zu", c.size()); std::fprintf(stderr, "\n"); }
-      ++m_dual_repairs.pinched;
-      std::vector<std::array<std::size_t, 3>> rest;
-      for(const auto& t : tris)
-        if(t[0] != pinched && t[1] != pinched && t[2] != pinched) rest.push_back(t);
-      tris.swap(rest);
-      std::set<std::pair<std::size_t, std::size_t>> edges;
-      for(const auto& t : tris)
-        for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
-      const std::size_t before = tris.size();
-      for(const auto& c : cycles) fill_hole_by_ears(c, edges, tris);
-      if(tris.size() == before) return;
-      const Eigen::Vector3d p = site_position(pinched);
-      std::size_t best = before;
-      double d = 1e300;
-      for(std::size_t j = before; j < tris.size(); ++j) {
-        const Eigen::Vector3d g = (site_position(tris[j][0]) + site_position(tris[j][1]) + site_position(tris[j][2])) / 3.0;
-        if((g - p).squaredNorm() < d) d = (g - p).squaredNorm(), best = j;
-      }
-      const std::array<std::size_t, 3> t = tris[best];
-      tris[best] = {{t[0], t[1], pinched}};
-      tris.push_back({{t[1], t[2], pinched}});
-      tris.push_back({{t[2], t[0], pinched}});
-    }
-  }
-
-  // Fills the hole `loop` (oriented as its missing triangles have their edges) with the sites `inside` by a
-  // constrained Delaunay triangulation in the plane of the loop (Newell's normal); `false` if the loop is
-  // not a simple polygon there or a site falls outside it.
-  bool fill_hole_by_projection(const std::vector<std::size_t>& loop, const std::vector<std::size_t>& inside,
-                               std::set<std::pair<std::size_t, std::size_t>>& edges, std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    typedef CGAL::Exact_predicates_inexact_constructions_kernel EK;
-    typedef CGAL::Triangulation_vertex_base_with_info_2<std::size_t, EK> Vb;
-    typedef CGAL::Constrained_triangulation_face_base_2<EK> Fb;
-    typedef CGAL::Triangulation_data_structure_2<Vb, Fb> Tds;
-    typedef CGAL::Constrained_Delaunay_triangulation_2<EK, Tds, CGAL::No_constraint_intersection_tag> CDT;
-    const std::size_t m = loop.size();
-    std::vector<Eigen::Vector3d> x;
-    for(std::size_t v : loop) x.push_back(site_position(v));
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
-    for(std::size_t i = 0; i < m; ++i) normal += x[i].cross(x[(i + 1) % m]), mean += x[i];
-    mean /= double(m);
-    if(!(normal.norm() > 0)) return false;
-    normal.normalize();
-    const Eigen::Vector3d e1 = normal.unitOrthogonal(), e2 = normal.cross(e1);
-    auto project = [&](const Eigen::Vector3d& p) { return EK::Point_2((p - mean).dot(e1), (p - mean).dot(e2)); };
-    std::vector<EK::Point_2> polygon;
-    for(const auto& p : x) polygon.push_back(project(p));
-    // the loop must be a simple polygon, counterclockwise about the normal
-    for(std::size_t i = 0; i < m; ++i)
-      for(std::size_t j = i + 1; j < m; ++j) {
-        if(j == i + 1 || (i == 0 && j == m - 1)) continue;
-        if(CGAL::do_intersect(EK::Segment_2(polygon[i], polygon[(i + 1) % m]), EK::Segment_2(polygon[j], polygon[(j + 1) % m]))) {
-          if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "  not simple\n");
-          return false;
-        }
-      }
-    CDT cdt;
-    try {
-      std::vector<CDT::Vertex_handle> h;
-      for(std::size_t i = 0; i < m; ++i) {
-        h.push_back(cdt.insert(polygon[i]));
-        h.back()->info() = loop[i];
-      }
-      for(std::size_t i = 0; i < m; ++i) cdt.insert_constraint(h[i], h[(i + 1) % m]);
-      for(std::size_t v : inside) {
-        const EK::Point_2 q = project(site_position(v));
-        if(CGAL::bounded_side_2(polygon.begin(), polygon.end(), q) != CGAL::ON_BOUNDED_SIDE) {
-          if(std::getenv("CONE_DEBUG")) { std::fprintf(stderr, "  site %zu outside the hole's polygon (%g %g):", v, q.x(), q.y()); for(auto& pp : polygon) std::fprintf(stderr, " (%g %g)", pp.x(), pp.y()); std::fprintf(stderr, "\n"); }
-          return false;
-        }
-        CDT::Vertex_handle w = cdt.insert(q);
-        w->info() = v;
-      }
-      if(cdt.number_of_vertices() != m + inside.size()) return false;
-    } catch(const std::exception&) {
-      return false;
-    }
-    const bool ccw = CGAL::orientation_2(polygon.begin(), polygon.end()) == CGAL::COUNTERCLOCKWISE;
-    std::vector<std::array<std::size_t, 3>> added;
-    for(auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-      EK::Point_2 c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
-      if(CGAL::bounded_side_2(polygon.begin(), polygon.end(), c) != CGAL::ON_BOUNDED_SIDE) continue;
-      std::array<std::size_t, 3> t{{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}};
-      if(!ccw) std::swap(t[1], t[2]);
-      added.push_back(t);
-    }
-    // a diagonal the mesh already has elsewhere would join two sites twice
-    std::set<std::pair<std::size_t, std::size_t>> loop_edges;
-    for(std::size_t i = 0; i < m; ++i) loop_edges.insert(std::minmax(loop[i], loop[(i + 1) % m]));
-    for(const auto& t : added)
-      for(int k = 0; k < 3; ++k) {
-        const auto e = std::minmax(t[std::size_t(k)], t[std::size_t((k + 1) % 3)]);
-        if(!loop_edges.count(e) && (edges.count(e) || edges.count({e.second, e.first}))) return false;
-      }
-    if(added.size() != m - 2 + 2 * inside.size()) {
-      if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "  %zu triangles\n", added.size());
-      return false;
-    }
-    tris.insert(tris.end(), added.begin(), added.end());
-    for(const auto& t : added)
-      for(int k = 0; k < 3; ++k) edges.insert({t[std::size_t(k)], t[std::size_t((k + 1) % 3)]});
-    return true;
-  }
-
-  // Fills the hole `loop` by a fan from its first inside site, each further one splitting the fan's triangle
-  // whose centroid is nearest to it in space (a disk whatever the shape: the tip of a curved horn does not
-  // project into its loop)
-  void fill_hole_by_fan(const std::vector<std::size_t>& loop, const std::vector<std::size_t>& inside,
-                        std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    std::vector<std::array<std::size_t, 3>> added;
-    for(std::size_t i = 0; i < loop.size(); ++i) added.push_back({{loop[i], loop[(i + 1) % loop.size()], inside.front()}});
-    for(std::size_t k = 1; k < inside.size(); ++k) {
-      const Eigen::Vector3d p = site_position(inside[k]);
-      std::size_t best = 0;
-      double d = 1e300;
-      for(std::size_t j = 0; j < added.size(); ++j) {
-        const Eigen::Vector3d g = (site_position(added[j][0]) + site_position(added[j][1]) + site_position(added[j][2])) / 3.0;
-        if((g - p).squaredNorm() < d) d = (g - p).squaredNorm(), best = j;
-      }
-      const std::array<std::size_t, 3> t = added[best];
-      added[best] = {{t[0], t[1], inside[k]}};
-      added.push_back({{t[1], t[2], inside[k]}});
-      added.push_back({{t[2], t[0], inside[k]}});
-    }
-    tris.insert(tris.end(), added.begin(), added.end());
-  }
-
-  // Fills the hole `loop` by ear clipping in space, the ear of largest smallest angle first, never adding an
-  // edge the mesh has (`edges`, updated)
-  void fill_hole_by_ears(std::vector<std::size_t> loop, std::set<std::pair<std::size_t, std::size_t>>& edges,
-                         std::vector<std::array<std::size_t, 3>>& tris) const
-  {
-    std::vector<Eigen::Vector3d> x;
-    for(std::size_t v : loop) x.push_back(site_position(v));
-    auto has_edge = [&](std::size_t a, std::size_t b) { return edges.count({a, b}) || edges.count({b, a}); };
-    auto angle = [](const Eigen::Vector3d& o, const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
-      return std::atan2((u - o).cross(w - o).norm(), (u - o).dot(w - o));
-    };
-    while(loop.size() > 3) {
-      int best = -1;
-      double best_angle = -1;
-      const std::size_t m = loop.size();
-      for(std::size_t i = 0; i < m; ++i) {
-        const std::size_t a = (i + m - 1) % m, c = (i + 1) % m;
-        if(has_edge(loop[a], loop[c])) continue;
-        const double smallest = std::min({angle(x[a], x[i], x[c]), angle(x[i], x[c], x[a]), angle(x[c], x[a], x[i])});
-        if(smallest > best_angle) best_angle = smallest, best = int(i);
-      }
-      if(best < 0) {
-        if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "  ears stuck at %zu of the loop\n", loop.size());
-        return;
-      }
-      const std::size_t i = std::size_t(best), a = (i + m - 1) % m, c = (i + 1) % m;
-      tris.push_back({{loop[a], loop[i], loop[c]}});
-      edges.insert({loop[a], loop[i]});
-      edges.insert({loop[i], loop[c]});
-      edges.insert({loop[c], loop[a]});
-      loop.erase(loop.begin() + std::ptrdiff_t(i));
-      x.erase(x.begin() + std::ptrdiff_t(i));
-    }
-    if(loop.size() == 3) tris.push_back({{loop[0], loop[1], loop[2]}});
   }
 
   // Walks from x in face f straight to `target` (f's chart); returns the face reached, the position in its
@@ -1078,7 +588,9 @@ private:
   mutable std::vector<std::vector<Face_copy>> m_band;
   mutable std::vector<double> m_band_width;
   mutable std::size_t m_walk_steps = 0;
-  mutable Dual_repairs m_dual_repairs;
+  mutable internal::Cone_surface_delaunay::Statistics m_dual_statistics;
+  std::vector<std::array<int, 3>> m_faces;  // the background faces and twins, for the dual
+  std::vector<int> m_twin;
 };
 
 } // namespace Aniso_conformal
