@@ -486,37 +486,47 @@ private:
     return true;
   }
 
+  // v (a cone) removed if of degree 1 or 2, else merged into its nearest neighbouring site for which the
+  // link condition holds; false if none does (yet)
+  bool merge_into_site(int v)
+  {
+    const std::vector<int> sx = spokes_of(v);
+    if(sx.empty()) return false;
+    if((sx.size() == 1 && remove_degree_one(sx[0])) || (sx.size() == 2 && remove_degree_two(sx))) return true;
+    std::vector<std::pair<double, int>> candidates;
+    for(int s : sx)
+      if(std::size_t(head(s)) >= m_nb) candidates.push_back({m_len[std::size_t(s)], s});
+    std::sort(candidates.begin(), candidates.end());
+    for(const auto& c : candidates)
+      if(collapse(c.second)) return true;
+    return false;
+  }
+
   // 4: every vertex of the background left (the cones) merged into its nearest neighbouring site, then
   // the edges that join two sites twice (around a sharp cone) flipped away; the triangles over the sites
   std::vector<std::array<std::size_t, 3>> collapse_to_points(std::size_t npoints)
   {
-    for(std::size_t v = 0; v < m_nb; ++v) {
-      if(m_out[v] < 0) continue;
-      const std::vector<int> sx = spokes_of(int(v));
-      if((sx.size() == 1 && remove_degree_one(sx[0])) || (sx.size() == 2 && remove_degree_two(sx))) {  // a sharp cone inside two triangles: its two sites' edges become one
-        ++m_stats.collapsed;
-        continue;
+    // in passes: a cone whose link repeats a site or holds another cone may merge once its neighbours have
+    std::vector<int> left;
+    for(std::size_t v = 0; v < m_nb; ++v)
+      if(m_out[v] >= 0) left.push_back(int(v));
+    while(!left.empty()) {
+      std::vector<int> still;
+      for(int v : left)
+        if(merge_into_site(v)) ++m_stats.collapsed;
+        else still.push_back(v);
+      if(still.size() == left.size()) {
+        if(std::getenv("CONE_DEBUG"))
+          for(int v : still) {
+            std::fprintf(stderr, "collapse of %d failed: spokes", v);
+            for(int s : spokes_of(v)) std::fprintf(stderr, " %d(%s)", head(s), std::size_t(head(s)) >= m_nb ? "site" : "bg");
+            std::fprintf(stderr, "\n");
+          }
+        throw Convergence_failure("dual mesh: " + std::to_string(still.size()) + " " + std::string(still.size() == 1 ? "cone" : "cones") +
+                                      " of the cone surface cannot be merged into a neighbouring site (too few sites around them)",
+                                  double(still.size()));
       }
-      std::vector<std::pair<double, int>> candidates;
-      for(int s : sx)
-        if(std::size_t(head(s)) >= m_nb) candidates.push_back({m_len[std::size_t(s)], s});
-      std::sort(candidates.begin(), candidates.end());
-      bool done = false;
-      for(const auto& c : candidates)
-        if(collapse(c.second)) {
-          done = true;
-          break;
-        }
-      if(!done && std::getenv("CONE_DEBUG")) {
-        std::fprintf(stderr, "collapse of %zu failed: spokes", v);
-        for(int s : sx) std::fprintf(stderr, " %d(%s)", head(s), std::size_t(head(s)) >= m_nb ? "site" : "bg");
-        std::fprintf(stderr, "\n");
-      }
-      if(!done)
-        throw Convergence_failure("dual mesh: a " + std::string((*m_is_cone)[v] ? "cone" : "vertex") +
-                                      " of the cone surface cannot be merged into a neighbouring site (too few sites around it)",
-                                  0);
-      ++m_stats.collapsed;
+      left.swap(still);
     }
     // edges that join two sites twice
     for(std::size_t round = 0;; ++round) {
