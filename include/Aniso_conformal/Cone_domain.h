@@ -32,9 +32,8 @@ namespace Aniso_conformal {
  * 2, an atlas of planar charts), stages 4 and 5 run in `Cone_domain_traits`. Reports the cones, their
  * angles and the area distortion.
  *
- * Not yet: fixed sites (the input's corners and creases kept as output vertices, a hole's loop sites), so a
- * run that follows the creases falls back to the run without them (`Remeshing_result::creases_not_followed`),
- * and surfaces with holes are refused.
+ * The input's corners and crease sites are fixed sites at background vertices, as in the other closed
+ * domains. Not yet: surfaces with holes (refused: `fits()`).
  *
  * \cgalModels `ParametricDomain`
  */
@@ -58,11 +57,11 @@ struct Cone_domain : internal::Domain_policy_base<Cone_embedding, Cone_domain_tr
   {
     return cone_embedding(itri, np);
   }
-  /// \throws Remeshing_failure always: the cone domain does not keep fixed sites yet (the crease runs then
-  ///         fall back to the run without creases)
-  static Traits::Point corner_site(const Embedding&, int, int, int)
+  /// the fixed site at corner `corner` of background face `face`: that corner's position in the face's chart
+  /// (`Cone_domain_traits::initial_sites_after()` takes it in that frame)
+  static Traits::Point corner_site(const Embedding& emb, int face, int corner, int /*v*/)
   {
-    throw Remeshing_failure("the cone domain does not keep the input's corners and creases as fixed sites yet");
+    return emb.corner_uv[std::size_t(face)][std::size_t(corner)];
   }
   /// the cones, their angles, the area distortion and the atlas
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits& traits)

@@ -168,10 +168,22 @@ public:
    * a face; deterministic for a `seed`), each in the frame of its face's chart. None is fixed.
    * \throws Invalid_input if `n < 4` on genus 0, `n < 1` otherwise
    */
-  std::vector<Point> initial_sites(std::size_t n, unsigned seed)
+  std::vector<Point> initial_sites(std::size_t n, unsigned seed) { return initial_sites_after({}, n, seed); }
+  /*!
+   * the `fixed` sites, each exactly at corner `second` of background face `first` (its `Point` that
+   * corner's position in the face's chart, as `Cone_domain::corner_site()` gives), followed by
+   * `n - fixed.size()` sites placed as `initial_sites()` places them; a fixed site is the CVT's to keep
+   * where it is (`number_of_fixed_sites()` of the wrapper that gives them)
+   * \throws Invalid_input if fewer than `fixed.size()` sites, or fewer than 4 (genus 0) or 1 in all, are asked for,
+   *         or a face or corner is out of range
+   */
+  std::vector<Point> initial_sites_after(const std::vector<std::pair<int, int>>& fixed, std::size_t n, unsigned seed)
   {
     if(n < (m_emb->genus == 0 ? 4u : 1u))
       throw Invalid_input("the cone domain needs at least " + std::string(m_emb->genus == 0 ? "4 sites" : "one site"));
+    if(n < fixed.size())
+      throw Invalid_input("the cone domain: " + std::to_string(fixed.size()) + " fixed sites but only " + std::to_string(n) + " sites in all");
+    const std::size_t k = fixed.size();
     std::vector<std::pair<std::size_t, std::size_t>> slot;
     std::vector<double> cumulative;
     double total = 0;
@@ -186,18 +198,29 @@ public:
     const double offset = unit(rng);
     std::vector<Point> sites(n);
     m_state.assign(n, Site_state());
-    for(std::size_t k = 0; k < n; ++k) {
-      const double q = (double(k) + offset) / double(n) * total;
+    for(std::size_t j = 0; j < k; ++j) {
+      const int f = fixed[j].first, c = fixed[j].second;
+      if(f < 0 || std::size_t(f) >= m_emb->corner_uv.size() || c < 0 || c > 2)
+        throw Invalid_input("the cone domain: fixed site " + std::to_string(j) + " is not at a corner of a background face");
+      m_state[j].face = f;
+      m_state[j].x = m_emb->corner_uv[std::size_t(f)][std::size_t(c)];
+      m_state[j].point = m_state[j].x;
+      sites[j] = m_state[j].x;
+    }
+    const std::size_t free = n - k;
+    for(std::size_t i = 0; i < free; ++i) {
+      const std::size_t k2 = k + i;
+      const double q = (double(i) + offset) / double(free) * total;
       const std::size_t j = std::min<std::size_t>(cumulative.size() - 1,
                                                   std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), q) - cumulative.begin()));
       const internal::Background_triangle& T = m_chart[slot[j].first].tri[slot[j].second];
       double a = unit(rng), b = unit(rng);
       if(a + b > 1) a = 1 - a, b = 1 - b;
       const Point x = T.p[0] + a * (T.p[1] - T.p[0]) + b * (T.p[2] - T.p[0]);
-      m_state[k].face = T.face;
-      m_state[k].x = x;
-      m_state[k].point = x;
-      sites[k] = x;
+      m_state[k2].face = T.face;
+      m_state[k2].x = x;
+      m_state[k2].point = x;
+      sites[k2] = x;
     }
     m_band.assign(m_chart.size(), {});
     m_band_width.assign(m_chart.size(), 0.0);
