@@ -33,7 +33,8 @@ namespace Aniso_conformal {
  * angles and the area distortion.
  *
  * The input's corners and crease sites are fixed sites at background vertices, as in the other closed
- * domains. Not yet: surfaces with holes (refused: `fits()`).
+ * domains. Not yet: surfaces with holes (refused: `fits()`; the plane, the sphere and the other closed
+ * domains take them).
  *
  * \cgalModels `ParametricDomain`
  */

@@ -72,6 +72,7 @@ public:
   std::vector<std::array<std::size_t, 3>> triangulate(const std::vector<Point_on_face>& points)
   {
     m_stats = Statistics();
+    m_relaxed = false;
     const std::size_t nf = m_faces0->size();
     m_nb = 0;
     for(const auto& f : *m_faces0)
@@ -194,6 +195,12 @@ private:
         const Eigen::Vector3d b = barycentric(xy[std::size_t(3 * t)], xy[std::size_t(3 * t + 1)], xy[std::size_t(3 * t + 2)], points[i].x);
         if(b.minCoeff() > best_min) best_min = b.minCoeff(), best = t, best_b = b;
       }
+      for(int k = 0; k < 3; ++k)  // at a point inserted before: the same point twice
+        if(std::size_t(m_tail[std::size_t(3 * best + k)]) >= m_nb &&
+           (xy[std::size_t(3 * best + k)] - points[i].x).norm() <= 1e-12 * (xy[std::size_t(3 * best + (k + 1) % 3)] - xy[std::size_t(3 * best + k)]).norm())
+          throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with site " +
+                                        std::to_string(std::size_t(m_tail[std::size_t(3 * best + k)]) - m_nb) + " on the cone surface",
+                                    0);
       // a point on an edge or a corner goes a hair inside (the combinatorics do not depend on it)
       const double eps = 1e-7;
       Eigen::Vector3d b = best_b.cwiseMax(eps);
@@ -418,7 +425,7 @@ private:
   // Collapses the edge of h (x -> p) into p: the faces (x, p, q) and (p, x, r) go, their outer edges are
   // glued. false (nothing done) unless the link condition holds (x and p have q and r as their only
   // common neighbours, q != r) and the faces are glued simply.
-  bool collapse(int h)
+  bool collapse(int h, bool strict = true)
   {
     const int x = m_tail[std::size_t(h)], p = head(h), t = m_twin[std::size_t(h)];
     const int hn = next(h), hp = prev(h), tn = next(t), tp = prev(t);
@@ -433,13 +440,16 @@ private:
     for(int s : sx) nx.insert(head(s));
     for(int s : sp) np.insert(head(s));
     if(nx.count(x) || np.count(p)) return false;
+    std::size_t times = 0;  // p among x's neighbours: more than once would fold a face onto p
+    for(int s : sx) times += head(s) == p;
+    if(times != 1) return false;
     std::size_t common = 0;
     for(int y : nx)
       if(y != p && np.count(y)) {
-        if(y != q && y != r) return false;
+        if(strict && y != q && y != r) return false;
         ++common;
       }
-    if(common != 2) return false;
+    if(strict && common != 2) return false;
     m_twin[std::size_t(A)] = B, m_twin[std::size_t(B)] = A;
     m_twin[std::size_t(C)] = D, m_twin[std::size_t(D)] = C;
     for(int s : sx) m_tail[std::size_t(s)] = p;
@@ -499,6 +509,11 @@ private:
     std::sort(candidates.begin(), candidates.end());
     for(const auto& c : candidates)
       if(collapse(c.second)) return true;
+    // none keeps the link condition: the nearest whose merge folds no face; the edges it doubles are
+    // flipped away after (collapse_to_points())
+    if(m_relaxed)
+      for(const auto& c : candidates)
+        if(collapse(c.second, false)) return true;
     return false;
   }
 
@@ -515,6 +530,11 @@ private:
       for(int v : left)
         if(merge_into_site(v)) ++m_stats.collapsed;
         else still.push_back(v);
+      if(still.size() == left.size() && !m_relaxed) {  // another pass, merging without the link condition
+        m_relaxed = true;
+        left.swap(still);
+        continue;
+      }
       if(still.size() == left.size()) {
         if(std::getenv("CONE_DEBUG"))
           for(int v : still) {
@@ -540,11 +560,28 @@ private:
       for(const auto& e : edges) {
         if(e.second.size() < 2) continue;
         ++repeated;
+        bool done = false;
         for(int h : e.second)
           if(m_alive[std::size_t(h / 3)] && flip_combinatorially(h, edges)) {
             ++flipped;
+            done = true;
             break;
           }
+        // blocked (the flipped edge would double another): flip an edge next to it first, in its two faces
+        for(int h : e.second) {
+          if(done || !m_alive[std::size_t(h / 3)]) continue;
+          const int t = m_twin[std::size_t(h)];
+          for(int y : {next(h), prev(h), next(t), prev(t)}) {
+            const int a = m_tail[std::size_t(y)], b = head(y);
+            const auto it = edges.find({std::min(a, b), std::max(a, b)});
+            if(it != edges.end() && it->second.size() > 1) continue;  // a doubled edge itself
+            if(flip_combinatorially(y, edges)) {
+              ++flipped;
+              done = true;
+              break;
+            }
+          }
+        }
       }
       m_stats.untangled += flipped;
       if(repeated == 0) break;
@@ -577,8 +614,12 @@ private:
     if(c == d) return false;
     const auto key = std::make_pair(std::min(c, d), std::max(c, d));
     if(edges.count(key) && !edges[key].empty()) return false;
+    const int a = m_tail[std::size_t(h)], b = m_tail[std::size_t(t)];
+    if(spokes_of(a).size() <= 3 || spokes_of(b).size() <= 3) return false;  // a or b would be left of degree 2
     if(!flip(h, false)) return false;
     edges[key].push_back(-1);  // joined now (the halfedge itself is not needed)
+    auto& old = edges[{std::min(a, b), std::max(a, b)}];
+    if(!old.empty()) old.pop_back();
     return true;
   }
 
@@ -587,6 +628,7 @@ private:
   const std::vector<std::array<Eigen::Vector2d, 3>>* m_layout;
   const std::vector<char>* m_is_cone;
   std::size_t m_nb = 0;
+  bool m_relaxed = false;  // step 4: merging without the link condition (once every strict merge is done)
   std::vector<int> m_tail, m_twin, m_out;
   std::vector<double> m_len;
   std::vector<char> m_alive;
