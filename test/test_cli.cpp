@@ -458,6 +458,36 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_a_genus_zero_surface_on_the_sphere)
   BOOST_TEST(!exists(mesh));
 }
 
+BOOST_AUTO_TEST_CASE(tool_remeshes_the_cow_through_cones)
+{
+  BOOST_TEST((parse({"--input", "e.off", "--domain", "cones", "--vertices", "10"}).parametric_domain ==
+              Aniso_conformal::Parametric_domain::CONE));
+  // the cow's legs and tail are too long for the sphere: the automatic choice goes to cones and says why
+  const std::string in = data_dir + "/meshes/cow.off", mesh = out_dir + "/cli_cow_out.off", report = out_dir + "/cli_cow.json";
+  std::remove(mesh.c_str());
+  const Run r = run("--input " + in + " --no-features --vertices 1500 --output " + mesh + " --report " + report);
+  BOOST_TEST(r.status == 0, r.err);
+  BOOST_TEST(r.out.find("domain       cones, because the sphere failed") != std::string::npos);
+  BOOST_TEST(r.out.find("(domain cones)") != std::string::npos);
+  BOOST_TEST(r.out.find("area distortion") != std::string::npos);
+  const Aniso_conformal::Input_surface out = Aniso_conformal::IO::read_triangle_mesh(mesh);
+  BOOST_TEST(out.number_of_vertices() == 1500u);
+  BOOST_TEST(out.genus() == 0);
+  BOOST_TEST(out.boundary_loops().empty());
+  const nlohmann::json j = read_json(report);
+  BOOST_TEST(j.at("domain") == "cones");
+  BOOST_TEST(std::string(j.at("domain_choice")).find("the sphere failed") != std::string::npos);
+  BOOST_TEST(double(j.at("conformal_embedding").at("cones")) >= 4);
+
+  // a surface with a boundary is not for cones: exit 2, nothing written
+  const std::string annulus = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/annulus.off";
+  std::remove(mesh.c_str());
+  const Run bad = run("--input " + annulus + " --domain cones --vertices 300 --output " + mesh);
+  BOOST_TEST(bad.status == 2);
+  BOOST_TEST(bad.err.find("cones domain does not fit") != std::string::npos);
+  BOOST_TEST(!exists(mesh));
+}
+
 BOOST_AUTO_TEST_CASE(garbage_files_exit_2_with_a_printable_one_line_message)
 {
   // binary garbage as every kind of input file: exit 2, one line of printable ASCII on stderr (no raw

@@ -145,6 +145,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::printf(", refined from %zu by %zu edge splits", result.refinement.vertices_before, result.refinement.splits);
     std::printf(")\n");
     if(result.repairs.any()) std::printf("repairs      %s\n", result.repairs.summary().c_str());
+    if(!result.domain_choice.empty()) std::printf("domain       %s\n", result.domain_choice.c_str());
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu boundary corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
                 AC::domain_name(result.domain));

@@ -180,10 +180,11 @@ inline void declare_options(CLI::App& app, Options& o)
                          ->group(in);
   app.add_option("--domain", o.domain,
                  "'square': the unit square as the input (the tool builds a background resolving the metric); with "
-                 "--input or --image: the parametric domain, plane | sphere | flat-torus | hyperbolic | automatic (default: "
-                 "from the topology; a domain that does not fit the input's topology is refused)")
+                 "--input or --image: the parametric domain, plane | sphere | flat-torus | hyperbolic | cones | automatic "
+                 "(default: from the topology, cones where the sphere or the hyperbolic disk fails; a domain that does not fit the "
+                 "input's topology is refused)")
     ->type_name("NAME")
-    ->check(CLI::IsMember({"square", "automatic", "plane", "flat-torus", "sphere", "hyperbolic"}))
+    ->check(CLI::IsMember({"square", "automatic", "plane", "flat-torus", "sphere", "hyperbolic", "cones"}))
     ->group(in);
   input->excludes(image);
   app.add_flag("--no-repair", o.no_repair,
@@ -349,7 +350,7 @@ inline Options parse_command_line(const std::vector<std::string>& args)
   // --domain square is an input; any other --domain names the parametric domain of --input or --image
   if(!o.domain.empty() && o.domain != "square") {
     using D = Aniso_conformal::Parametric_domain;
-    for(D d : {D::AUTOMATIC, D::PLANE, D::FLAT_TORUS, D::SPHERE, D::HYPERBOLIC})
+    for(D d : {D::AUTOMATIC, D::PLANE, D::FLAT_TORUS, D::SPHERE, D::HYPERBOLIC, D::CONE})
       if(o.domain == Aniso_conformal::domain_name(d)) o.parametric_domain = d;
     if(o.input.empty() && o.image.empty())
       throw Aniso_conformal::Invalid_input("--domain " + o.domain + " names the domain of --input; give --input FILE");

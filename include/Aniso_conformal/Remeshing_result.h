@@ -114,6 +114,9 @@ struct Remeshing_result {
   /// if pieces were split or their refinement failed, the sites on the input's own crease vertices) failed, the first with this
   /// message (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)
   std::string creases_not_followed;
+  /// how the domain was chosen when the automatic choice left the topology's own: "cones, because the
+  /// sphere failed: <its reason>" (issue 16, item 5); empty otherwise
+  std::string domain_choice;
   /// the run whose output this is (`Crease_run`): crease sites on refined pieces, on the input's own crease
   /// vertices, or none (`NONE` without a crease curve; `NOT_FOLLOWED` with `creases_not_followed`)
   Crease_run crease_run = Crease_run::NONE;

@@ -39,7 +39,8 @@ enum class Parametric_domain {
   PLANE,       ///< the plane, for topological disks (2D domains, images, open patches)
   FLAT_TORUS,  ///< the flat torus, for closed surfaces of genus 1
   SPHERE,      ///< the unit sphere, for closed surfaces of genus 0 (not available in this version)
-  HYPERBOLIC   ///< the hyperbolic disk, for closed surfaces of genus 2 or more
+  HYPERBOLIC,  ///< the hyperbolic disk, for closed surfaces of genus 2 or more
+  CONE         ///< a flat metric with cone singularities, for closed surfaces of any genus (long limbs, any area distortion)
 };
 
 /*!
@@ -85,6 +86,7 @@ inline const char* domain_name(Parametric_domain d)
   case Parametric_domain::FLAT_TORUS: return "flat-torus";
   case Parametric_domain::SPHERE: return "sphere";
   case Parametric_domain::HYPERBOLIC: return "hyperbolic";
+  case Parametric_domain::CONE: return "cones";
   default: return "automatic";
   }
 }

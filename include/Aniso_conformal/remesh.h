@@ -4,6 +4,7 @@
 #ifndef ANISO_CONFORMAL_REMESH_H
 #define ANISO_CONFORMAL_REMESH_H
 
+#include <Aniso_conformal/Cone_domain.h>
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Flat_torus_domain.h>
 #include <Aniso_conformal/Hyperbolic_domain.h>
@@ -36,6 +37,28 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
   return surface.genus() == 0 ? Parametric_domain::SPHERE
          : surface.genus() == 1 ? Parametric_domain::FLAT_TORUS
                                 : Parametric_domain::HYPERBOLIC;
+}
+
+// The automatic choice on a closed surface without holes (issue 16, item 5): the uniformization domain
+// `Domain` (the sphere, the hyperbolic disk); if it fails to converge (a conformal factor that double
+// precision cannot represent, sites too close to tell apart, an output that does not close), the cone
+// domain, whose area distortion is bounded by construction. The reason is in
+// Remeshing_result::domain_choice; the cone run's own failure, if any, is the one thrown.
+template <typename Domain, typename AnisotropicMetric, typename NamedParameters>
+Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                                               const NamedParameters& np)
+{
+  if(!surface.boundary_loops().empty()) return remesh_in_domain<Domain>(surface, metric, result, np);
+  std::string reason;
+  try {
+    return remesh_in_domain<Domain>(surface, metric, result, np);
+  } catch(const Convergence_failure& e) {
+    reason = e.what();
+  }
+  result = Remeshing_result();
+  Remeshed_surface out = remesh_in_domain<Cone_domain>(surface, metric, result, np);
+  result.domain_choice = std::string("cones, because the ") + domain_name(Domain::kind) + " failed: " + reason;
+  return out;
 }
 
 } // namespace internal
@@ -122,11 +145,17 @@ Remeshed_surface remesh(const Input_surface& surface, const AnisotropicMetric& m
   if(internal::number_of_vertices(np) < 3)
     throw Invalid_input("remesh(): at least 3 output vertices are needed, " + std::to_string(internal::number_of_vertices(np)) +
                         " were requested");
+  const bool automatic = internal::parametric_domain(np) == Parametric_domain::AUTOMATIC;
   switch(internal::choose_domain(surface, internal::parametric_domain(np))) {
   case Parametric_domain::PLANE: return remesh_in_domain<Planar_domain>(surface, metric, result, np);
-  case Parametric_domain::SPHERE: return remesh_in_domain<Spherical_domain>(surface, metric, result, np);
+  case Parametric_domain::SPHERE:
+    if(!automatic) return remesh_in_domain<Spherical_domain>(surface, metric, result, np);
+    return internal::remesh_with_cones_if_it_fails<Spherical_domain>(surface, metric, result, np);
   case Parametric_domain::FLAT_TORUS: return remesh_in_domain<Flat_torus_domain>(surface, metric, result, np);
-  case Parametric_domain::HYPERBOLIC: return remesh_in_domain<Hyperbolic_domain>(surface, metric, result, np);
+  case Parametric_domain::HYPERBOLIC:
+    if(!automatic) return remesh_in_domain<Hyperbolic_domain>(surface, metric, result, np);
+    return internal::remesh_with_cones_if_it_fails<Hyperbolic_domain>(surface, metric, result, np);
+  case Parametric_domain::CONE: return remesh_in_domain<Cone_domain>(surface, metric, result, np);
   case Parametric_domain::AUTOMATIC: break;
   }
   throw Internal_error("remesh(): no domain was chosen");

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -159,6 +160,15 @@ protected:
   std::vector<Corner_site<typename Traits::Point>> m_sites;
 };
 
+// `value` is true for traits with `initial_sites_after(fixed, n, seed)`: the fixed sites given as
+// background corners (face, corner) and the rest placed by the traits, which keep a state per site
+template <typename Traits, typename = void>
+struct has_initial_sites_after : std::false_type {};
+template <typename Traits>
+struct has_initial_sites_after<Traits, std::void_t<decltype(std::declval<Traits&>().initial_sites_after(
+                                           std::declval<const std::vector<std::pair<int, int>>&>(), std::size_t(0), 0u))>>
+  : std::true_type {};
+
 // Domain traits of a closed domain with the input's corners as fixed sites: the first sites are the
 // corners (in the order given), the rest come from the traits' own initial_sites(); everything else is the
 // traits' own. With no corner it is the traits exactly (same sites, same output bit for bit).
@@ -179,6 +189,11 @@ public:
     if(n < k)
       throw Invalid_input("remesh(): the input has " + std::to_string(k) + " corners, each kept as an output vertex, but " +
                           std::to_string(n) + " output vertices were requested");
+    if constexpr(has_initial_sites_after<Traits>::value) {  // traits that keep a state per site (the cone domain's)
+      std::vector<std::pair<int, int>> at;
+      for(const auto& c : m_sites) at.push_back({c.face, c.corner});
+      return Traits::initial_sites_after(at, n, seed);
+    }
     std::vector<Point> sites;
     sites.reserve(n);
     for(const auto& c : m_sites) sites.push_back(c.site);

@@ -1,0 +1,92 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_CONE_DOMAIN_H
+#define ANISO_CONFORMAL_CONE_DOMAIN_H
+
+#include <Aniso_conformal/Cone_domain_traits.h>
+#include <Aniso_conformal/Domain_diagnostics.h>
+#include <Aniso_conformal/Exceptions.h>
+#include <Aniso_conformal/Hyperbolic_domain.h>
+#include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/cone_embedding.h>
+#include <Aniso_conformal/internal/domains/domain_policy_base.h>
+#include <Aniso_conformal/parameters.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+/// \file Cone_domain.h
+
+namespace Aniso_conformal {
+
+/*!
+ * \ingroup PkgAnisoConformalDomains
+ * a flat metric with cone singularities, for closed surfaces of any genus whose uniformization metric
+ * distorts area beyond what double precision or the CVT can carry (long limbs, thin handles; issue 16):
+ * stage 3 is `cone_embedding()` (cones placed greedily until the range of the log scale factor is at most
+ * 2, an atlas of planar charts), stages 4 and 5 run in `Cone_domain_traits`. Reports the cones, their
+ * angles and the area distortion.
+ *
+ * The input's corners and crease sites are fixed sites at background vertices, as in the other closed
+ * domains. Not yet: surfaces with holes (refused: `fits()`; the plane, the sphere and the other closed
+ * domains take them).
+ *
+ * \cgalModels `ParametricDomain`
+ */
+struct Cone_domain : internal::Domain_policy_base<Cone_embedding, Cone_domain_traits> {
+  static constexpr Parametric_domain kind = Parametric_domain::CONE;  ///< its tag
+
+  /// the topologies it takes, in words
+  static const char* topology() { return "closed surfaces (without boundary) of any genus"; }
+  /// `true` for a closed surface
+  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 0, std::numeric_limits<int>::max()); }
+  /// \throws Invalid_input below the smallest triangulation of the genus (4 for the sphere, 7 for the torus,
+  ///         `Hyperbolic_domain::minimum_number_of_vertices()` above)
+  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
+  {
+    const int g = s.genus();
+    require_vertices(s, n, g == 0 ? 4 : g == 1 ? 7 : Hyperbolic_domain::minimum_number_of_vertices(g), "the smallest triangulation of that genus");
+  }
+  /// stage 3: `cone_embedding()`
+  template <typename NamedParameters>
+  static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)
+  {
+    return cone_embedding(itri, np);
+  }
+  /// the fixed site at corner `corner` of background face `face`: that corner's position in the face's chart
+  /// (`Cone_domain_traits::initial_sites_after()` takes it in that frame)
+  static Traits::Point corner_site(const Embedding& emb, int face, int corner, int /*v*/)
+  {
+    return emb.corner_uv[std::size_t(face)][std::size_t(corner)];
+  }
+  /// the cones, their angles, the area distortion and the atlas
+  static Domain_diagnostics diagnostics(const Embedding& emb, const Traits& traits)
+  {
+    const double deg = 180 / 3.14159265358979323846;
+    Domain_diagnostics d;
+    d.add("cones", double(emb.cones.size()), "cone singularities placed", true);
+    double lo = 0, hi = 0;
+    if(!emb.cone_angles.empty()) {
+      lo = *std::min_element(emb.cone_angles.begin(), emb.cone_angles.end()) * deg;
+      hi = *std::max_element(emb.cone_angles.begin(), emb.cone_angles.end()) * deg;
+    }
+    d.add("cone_angle_range", {lo, hi}, 2, "smallest and largest cone angle (degrees)");
+    d.add("log_scale_factor_range", emb.u_range, "max u - min u of the cone metric (area distortion exp(2 range))");
+    d.add("start_log_scale_factor_range", emb.start_u_range, "the same with the starting cones only (four extreme points on genus 0)");
+    d.add("charts", double(traits.number_of_charts()), "planar charts of the atlas", true);
+    char text[200];
+    std::snprintf(text, sizeof(text), "%zu cones of %.0f to %.0f degrees; area distortion %.1f (%.3g with the starting cones)",
+                  emb.cones.size(), lo, hi, std::exp(2 * emb.u_range), std::exp(2 * emb.start_u_range));
+    d.summary = text;
+    return d;
+  }
+};
+
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_CONE_DOMAIN_H
