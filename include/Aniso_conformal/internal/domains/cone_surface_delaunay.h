@@ -517,6 +517,116 @@ private:
     return false;
   }
 
+  // The cluster of v (the vertices other than points joined to v by edges through such vertices: cones
+  // next to each other, or a cone inside a loop edge of another) and every face at it removed, the hole
+  // left (a disk whose border joins points only, each once) triangulated as a fan from one border point
+  // that no diagonal doubles. false (nothing done) if the hole is not such a disk or no point serves.
+  bool replace_cluster_by_fan(int v)
+  {
+    std::set<int> cluster = {v};
+    std::vector<int> queue = {v};
+    std::set<int> sites_next;  // the points joined to the cluster, nearest first below
+    std::vector<std::pair<double, int>> nearest;
+    while(!queue.empty()) {
+      const int x = queue.back();
+      queue.pop_back();
+      const std::vector<int> sx = spokes_of(x);
+      if(sx.empty()) return false;
+      for(int s : sx) {
+        const int y = head(s);
+        if(std::size_t(y) < m_nb && cluster.insert(y).second) queue.push_back(y);
+        if(std::size_t(y) >= m_nb && sites_next.insert(y).second) nearest.push_back({m_len[std::size_t(s)], y});
+      }
+    }
+    if(fan_over_region(cluster, -1)) return true;
+    // else the region of the cluster and of one of its sites, fanned from that site inside it
+    std::sort(nearest.begin(), nearest.end());
+    for(const auto& p : nearest)
+      if(fan_over_region(cluster, p.second)) return true;
+    return false;
+  }
+
+  // The faces at `cluster` (and at the point `inside`, if >= 0) replaced: by a fan from a border point
+  // (inside < 0) or from `inside`. false (nothing done) unless they form a disk whose border is a cycle
+  // of distinct points (not `inside`), and, for a fan from the border, no diagonal doubles an edge.
+  bool fan_over_region(const std::set<int>& cluster, int inside)
+  {
+    std::set<int> region;
+    for(int x : cluster)
+      for(int s : spokes_of(x)) region.insert(s / 3);
+    if(inside >= 0) {
+      const std::vector<int> si = spokes_of(inside);
+      if(si.empty()) return false;
+      for(int s : si) region.insert(s / 3);
+    }
+    std::map<int, int> border;  // tail -> halfedge of the region whose twin is outside it
+    std::size_t border_edges = 0;
+    for(int f : region)
+      for(int k = 0; k < 3; ++k) {
+        const int h = 3 * f + k;
+        if(region.count(m_twin[std::size_t(h)] / 3)) continue;
+        ++border_edges;
+        if(std::size_t(m_tail[std::size_t(h)]) < m_nb || std::size_t(head(h)) < m_nb || !border.emplace(m_tail[std::size_t(h)], h).second)
+          return false;
+      }
+    const std::size_t L = border.size();
+    const std::size_t interior = cluster.size() + (inside >= 0 ? 1 : 0);
+    if(L < 3 || border_edges != L || region.size() + 2 != L + 2 * interior || border.count(inside)) return false;  // a disk: F = L + 2 V_inside - 2
+    std::vector<int> cycle = {border.begin()->second};
+    while(cycle.size() < L) {
+      const auto it = border.find(head(cycle.back()));
+      if(it == border.end()) return false;
+      cycle.push_back(it->second);
+    }
+    if(head(cycle.back()) != m_tail[std::size_t(cycle.front())]) return false;
+    if(inside >= 0) {  // the star of `inside` over the whole border
+      std::vector<New_halfedge> nh;
+      for(std::size_t j = 0; j < L; ++j) {
+        const int wj = m_tail[std::size_t(cycle[j])], wk = head(cycle[j]);
+        (void)wk;
+        const int base = int(nh.size());
+        // (inside, w_j, w_j+1): inside -> w_j pairs with the previous triangle's w_j -> inside
+        nh.push_back({inside, 0, -1, j == 0 ? int(3 * L - 1) : base - 1});
+        nh.push_back({wj, 0, cycle[j], -1});
+        nh.push_back({head(cycle[j]), 0, -1, j + 1 == L ? 0 : base + 3});
+      }
+      replace(std::vector<int>(region.begin(), region.end()), nh);
+      for(int x : cluster) m_out[std::size_t(x)] = -1;
+      return true;
+    }
+    // the neighbours of each border point outside the region
+    auto outside_neighbours = [&](int w) {
+      std::set<int> n;
+      for(int s : spokes_of(w))
+        if(!region.count(s / 3) || !region.count(m_twin[std::size_t(s)] / 3)) n.insert(head(s));
+      return n;
+    };
+    for(std::size_t i = 0; i < L; ++i) {
+      const int apex = m_tail[std::size_t(cycle[i])];
+      const std::set<int> joined = outside_neighbours(apex);
+      bool ok = true;
+      for(std::size_t j = 2; j + 1 < L && ok; ++j) ok = !joined.count(m_tail[std::size_t(cycle[(i + j) % L])]);
+      if(!ok) continue;
+      // fan triangles (apex, w_j, w_j+1) for j = 1 .. L - 2 (w_j the tail of cycle[i + j])
+      std::vector<New_halfedge> nh;
+      for(std::size_t j = 1; j + 1 < L; ++j) {
+        const int wj = m_tail[std::size_t(cycle[(i + j) % L])], wk = m_tail[std::size_t(cycle[(i + j + 1) % L])];
+        const int base = int(nh.size());
+        New_halfedge first{apex, 0, -1, -1}, side{wj, 0, cycle[(i + j) % L], -1}, back{wk, 0, -1, -1};
+        if(j == 1) first.outer = cycle[i];
+        else first.pair = base - 1, nh[std::size_t(base - 1)].pair = base;
+        if(j + 2 == L) back.outer = cycle[(i + L - 1) % L];
+        nh.push_back(first);
+        nh.push_back(side);
+        nh.push_back(back);
+      }
+      replace(std::vector<int>(region.begin(), region.end()), nh);
+      for(int x : cluster) m_out[std::size_t(x)] = -1;
+      return true;
+    }
+    return false;
+  }
+
   // 4: every vertex of the background left (the cones) merged into its nearest neighbouring site, then
   // the edges that join two sites twice (around a sharp cone) flipped away; the triangles over the sites
   std::vector<std::array<std::size_t, 3>> collapse_to_points(std::size_t npoints)
@@ -534,6 +644,16 @@ private:
         m_relaxed = true;
         left.swap(still);
         continue;
+      }
+      if(still.size() == left.size()) {  // last resort: each cluster of cones joined by edges replaced by a fan of sites
+        std::vector<int> rest;
+        for(int v : still)
+          if(m_out[std::size_t(v)] >= 0 && !replace_cluster_by_fan(v)) rest.push_back(v);
+        m_stats.collapsed += still.size() - rest.size();
+        if(rest.size() < still.size()) {
+          left.swap(rest);
+          continue;
+        }
       }
       if(still.size() == left.size()) {
         if(std::getenv("CONE_DEBUG"))
