@@ -43,22 +43,31 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
 // `Domain` (the sphere, the hyperbolic disk); if it fails to converge (a conformal factor that double
 // precision cannot represent, sites too close to tell apart, an output that does not close), the cone
 // domain, whose area distortion is bounded by construction. The reason is in
-// Remeshing_result::domain_choice; the cone run's own failure, if any, is the one thrown.
+// Remeshing_result::domain_choice. If the cone run fails too, Convergence_failure with the first failure's
+// message (and residual) followed by the cone run's.
 template <typename Domain, typename AnisotropicMetric, typename NamedParameters>
 Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                                                const NamedParameters& np)
 {
   if(!surface.boundary_loops().empty()) return remesh_in_domain<Domain>(surface, metric, result, np);
   std::string reason;
+  double residual = 0;
   try {
     return remesh_in_domain<Domain>(surface, metric, result, np);
   } catch(const Convergence_failure& e) {
     reason = e.what();
+    residual = e.residual();
   }
   result = Remeshing_result();
-  Remeshed_surface out = remesh_in_domain<Cone_domain>(surface, metric, result, np);
-  result.domain_choice = std::string("cones, because the ") + domain_name(Domain::kind) + " failed: " + reason;
-  return out;
+  try {
+    Remeshed_surface out = remesh_in_domain<Cone_domain>(surface, metric, result, np);
+    result.domain_choice = std::string("cones, because the ") + domain_name(Domain::kind) + " failed: " + reason;
+    return out;
+  } catch(const Remeshing_failure& e) {
+    // both failed: the topology's own domain's failure first (it names its stage and, for too few sites,
+    // the fix), then the cone domain's
+    throw Convergence_failure(reason + "; the cone domain failed too: " + e.what(), residual);
+  }
 }
 
 } // namespace internal
@@ -87,7 +96,13 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  * - a surface with several boundary loops, or a boundary and a genus, goes to the closed domain of its
  *   genus with each hole closed by a virtual patch (no CVT density; its loop a chain of fixed sites at
  *   about equal metric arc length, each an output vertex on the input loop; the patch's dual triangles
- *   removed): the output has the input's genus and loops (manual, "Several boundary loops").
+ *   removed): the output has the input's genus and loops (manual, "Several boundary loops");
+ * - with `parametric_domain(Parametric_domain::CONE)`, or automatically when the sphere or the hyperbolic
+ *   disk fails with `Convergence_failure` on a closed surface (long limbs: a conformal factor double
+ *   precision cannot represent), the cone domain (`cone_embedding()`, `Cone_domain_traits`; issue 16):
+ *   a flat metric with cone singularities whose area distortion is at most `e^4`; the output is a closed
+ *   surface of the input's genus, and `Remeshing_result::domain_choice` says why cones were chosen. If
+ *   the cone run fails too, `Convergence_failure` gives both reasons, the first domain's first.
  *
  * The output is checked before it is returned: a consistently oriented, connected 2-manifold with the
  * input's genus and boundary count, no triangle inverted against the input's normals; every vertex lies
