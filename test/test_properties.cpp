@@ -671,13 +671,31 @@ BOOST_AUTO_TEST_CASE(closed_genus_two_goes_to_the_hyperbolic_disk)
   // its 24 corners (issue 15: where 3 edges of the voxels meet, each kept as an output vertex) need 24
   BOOST_TEST(contains(invalid_input_message([&] { AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(20))); }),
                       "the input has 24 corners"));
-  // without features, 20 sites are too few for a Delaunay triangulation of this surface that is a
-  // simplicial complex: a Remeshing_failure that says so (the smallest genus-2 triangulation has 10
-  // vertices, but the sites of a CVT are not placed to realise it)
+  // without features, 20 sites are too few for a Delaunay triangulation of this surface in the hyperbolic
+  // disk that is a simplicial complex: a Remeshing_failure that says so (the smallest genus-2
+  // triangulation has 10 vertices, but the sites of a CVT are not placed to realise it)
   BOOST_TEST(contains(remeshing_failure_message([&] {
-                        AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(20)).feature_angle(180.0));
+                        AC::remesh(s, AC::Uniform_metric(), r,
+                                   AC::parameters::number_of_vertices(std::size_t(20)).feature_angle(180.0).parametric_domain(
+                                     AC::Parametric_domain::HYPERBOLIC));
                       }),
                       "too few for the hyperbolic surface"));
+  // the automatic choice then tries the cone domain (issue 16): a closed genus-2 mesh of 20 vertices that
+  // says why it left the hyperbolic disk, or, if the cones fail too, both reasons, the hyperbolic one first
+  AC::Remeshed_surface through_cones;
+  const std::string m = remeshing_failure_message([&] {
+    through_cones = AC::remesh(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(20)).feature_angle(180.0));
+  });
+  BOOST_TEST_MESSAGE("genus-2 voxels at 20, automatic: " << (m == "(no exception)" ? r.domain_choice : m));
+  if(m == "(no exception)") {
+    BOOST_TEST((r.domain == AC::Parametric_domain::CONE));
+    BOOST_TEST(contains(r.domain_choice, "too few for the hyperbolic surface"));
+    BOOST_TEST(through_cones.points.size() == 20u);
+    BOOST_TEST(through_cones.faces.size() == 2 * 20u + 4);  // 2 n + 4 g - 4, g = 2
+  } else {
+    BOOST_TEST(contains(m, "too few for the hyperbolic surface"));
+    BOOST_TEST(contains(m, "; the cone domain failed too: "));
+  }
   // 60 and 400 sites, more than this coarse input's 48 vertices: the background is refined on its faces
   // (issue 14), and the output is a valid genus-2 surface (2 n + 4 (g - 1) triangles) on the input
   for(std::size_t n : {60u, 400u}) {
