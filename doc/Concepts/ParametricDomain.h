@@ -27,7 +27,10 @@
  * - `diagnostics()`: what the domain measured, for `Remeshing_result::domain_diagnostics` (called after
  *   the CVT and the dual, so that the traits can report what they did);
  * - `inverted_triangles_hint()`: the most likely reason, on this domain, for an inverted output triangle
- *   (appended to the `Convergence_failure` that refuses such an output).
+ *   (appended to the `Convergence_failure` that refuses such an output);
+ * - `optimizes_on_the_surface_by_default`: `true` if the default `Surface_optimization::REPAIR` runs
+ *   as `Surface_optimization::ALWAYS` in this domain (the cone domain, whose cells next to cones are
+ *   approximate); `false` in the other four.
  *
  * All members are static: a model holds no state; the state of a run lives in its `Embedding` and
  * `Traits`.
@@ -83,5 +86,7 @@ public:
   static Aniso_conformal::Domain_diagnostics diagnostics(const Embedding& embedding, const Traits& traits);
   /// the likely reason for an inverted output triangle on this domain, in words
   static const char* inverted_triangles_hint();
+  /// `true` if the default surface optimisation (`Surface_optimization::REPAIR`) runs as `Surface_optimization::ALWAYS` here
+  static constexpr bool optimizes_on_the_surface_by_default = false;
   /// @}
 };

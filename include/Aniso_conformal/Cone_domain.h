@@ -41,6 +41,12 @@ namespace Aniso_conformal {
 struct Cone_domain : internal::Domain_policy_base<Cone_embedding, Cone_domain_traits> {
   static constexpr Parametric_domain kind = Parametric_domain::CONE;  ///< its tag
 
+  /// `true`: the default surface optimisation (`Surface_optimization::REPAIR`) runs always here, as
+  /// `Surface_optimization::ALWAYS`. The Voronoi cells next to cones are approximate (one sheet of the
+  /// plane around a cone of negative curvature holds one turn of it), and the CVT's dual alone leaves thin
+  /// triangles there (CGAL's limb models at 3000 vertices: theta_min 5 to 17 degrees, 0.2 to 0.9 % below
+  /// 30 degrees; with the stage: 16 to 31 degrees, at most 0.15 %; `benchmark/cones.md`)
+  static constexpr bool optimizes_on_the_surface_by_default = true;
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces (without boundary) of any genus"; }
   /// `true` for a closed surface
@@ -76,6 +82,12 @@ struct Cone_domain : internal::Domain_policy_base<Cone_embedding, Cone_domain_tr
       hi = *std::max_element(emb.cone_angles.begin(), emb.cone_angles.end()) * deg;
     }
     d.add("cone_angle_range", {lo, hi}, 2, "smallest and largest cone angle (degrees)");
+    std::vector<double> table;
+    for(std::size_t i = 0; i < emb.cones.size(); ++i) {
+      const Eigen::Vector3d& x = traits.background().position(emb.cones[i]);
+      table.insert(table.end(), {x.x(), x.y(), x.z(), i < emb.cone_angles.size() ? emb.cone_angles[i] * deg : 0.0});
+    }
+    d.add("cone_table", std::move(table), 4, "one row per cone: its position x, y, z on the input and its angle (degrees)");
     d.add("log_scale_factor_range", emb.u_range, "max u - min u of the cone metric (area distortion exp(2 range))");
     d.add("start_log_scale_factor_range", emb.start_u_range, "the same with the starting cones only (four extreme points on genus 0)");
     d.add("charts", double(traits.number_of_charts()), "planar charts of the atlas", true);

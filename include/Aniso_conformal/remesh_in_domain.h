@@ -386,7 +386,11 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   }();
 
   // the optimisation on the surface, in the metric (always, or to repair inverted triangles)
-  optimize_output(surface, metric, out, options.surface_optimization, vis, result, options.number_of_threads);
+  // (always, by default, in a domain that asks for it: the cone domain)
+  const Surface_optimization optimization = Domain::optimizes_on_the_surface_by_default && options.surface_optimization == Surface_optimization::REPAIR
+                                                ? Surface_optimization::ALWAYS
+                                                : options.surface_optimization;
+  optimize_output(surface, metric, out, optimization, vis, result, options.number_of_threads);
 
   // 6. quality in the metric, orientation against the input, topology and distance to the input
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);

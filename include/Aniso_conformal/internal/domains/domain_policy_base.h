@@ -28,6 +28,9 @@ struct Domain_policy_base {
   {
     return Traits(itri, emb, threads);
   }
+  // `true` if the default surface optimisation (Surface_optimization::REPAIR) runs always in this domain,
+  // as Surface_optimization::ALWAYS (the cone domain, whose Voronoi cells next to cones are approximate)
+  static constexpr bool optimizes_on_the_surface_by_default = false;
   // the likely reason for an inverted output triangle on a closed surface
   static const char* inverted_triangles_hint()
   {

@@ -91,8 +91,18 @@ public:
         if(donors.size() >= 4 * donors_tried) break;
         Donor d;
         d.v = c.second;
-        for(std::size_t f : faces_at[d.v]) d.ring.add(existing(mesh.faces[f]));
+        std::vector<std::pair<std::size_t, std::size_t>> opposite;
+        for(std::size_t f : faces_at[d.v]) {
+          d.ring.add(existing(mesh.faces[f]));
+          const Face& t = mesh.faces[f];
+          const int k = t[0] == d.v ? 0 : t[1] == d.v ? 1 : 2;
+          opposite.push_back({t[std::size_t((k + 1) % 3)], t[std::size_t((k + 2) % 3)]});
+        }
         if(d.ring.inverted > 0) continue;
+        // not the one vertex at a tip: its star without it would cut the tip off
+        if(!surface.is_planar() &&
+           angle_deficit(mesh.points[d.v], opposite, [&](std::size_t x) -> const Eigen::Vector3d& { return mesh.points[x]; }) > tip_angle_deficit)
+          continue;
         d.hole = retriangulate_star(d.v, faces_at[d.v]);
         if(d.hole.empty()) continue;
         for(const Face& h : d.hole) d.removal.add(existing(h));

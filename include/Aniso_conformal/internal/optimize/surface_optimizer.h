@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -76,6 +77,7 @@ public:
     for(V v : m_mesh.vertices())
       if(m_mesh.is_isolated(v) || m_mesh.is_border(v, false) || std::size_t(v.idx()) < m_out.fixed_vertices) m_fixed[v.idx()] = 1;
     if(m_angle_pass_everywhere) find_sliding_vertices();
+    m_start = m_out.points;
     return true;
   }
 
@@ -191,7 +193,7 @@ public:
       const Vertex_state old = state(i);
       const Eigen::Vector3d old_normal = interpolated_normal(old.sp);
       for(const Eigen::Vector3d& y : targets) {
-        if(!try_move(v, y, old_normal)) continue;
+        if(!try_move(v, y, old_normal, before.inverted > 0)) continue;
         const Local_score after = ring_score(ring);
         if(relaxed ? improves_above_floors(after, before, G_floor, angle_floor) : improves(after, before)) return true;
         restore(i, old);
@@ -261,7 +263,7 @@ public:
       Local_score best = before;
       Vertex_state best_state = old;
       for(const Eigen::Vector3d& y : targets) {
-        if(!try_move(v, y, old_normal)) continue;
+        if(!try_move(v, y, old_normal, false)) continue;
         const Local_score s = ring_score(ring);
         if(s.inverted == 0 && s.angle_min > best.angle_min + 1e-9 && s.G_min >= before.G_min && s.below_30 <= before.below_30) {
           best = s;
@@ -376,11 +378,18 @@ private:
   // moves vertex `v` toward `y` (move_onto_input()); a sliding vertex (slides()) goes instead to the
   // projection of `y` onto the line through its boundary neighbours, kept within 90 % of the way to each,
   // and the move is refused (nothing moved) unless it lands on an input boundary edge, at most 1e-9 of the
-  // input's diagonal from that line
-  bool try_move(V v, const Eigen::Vector3d& y, const Eigen::Vector3d& old_normal)
+  // input's diagonal from that line. Unless it `repairs` an inverted triangle, a move on a curved input
+  // is refused if it cuts off the shape the vertex held (keeps_the_shape_at()).
+  bool try_move(V v, const Eigen::Vector3d& y, const Eigen::Vector3d& old_normal, bool repairs)
   {
     const std::size_t i = v.idx();
-    if(!slides(i)) return move_onto_input(i, y, old_normal);
+    if(!slides(i)) {
+      const Vertex_state old = state(i);
+      if(!move_onto_input(i, y, old_normal)) return false;
+      if(repairs || m_surface.is_planar() || keeps_the_shape_at(v)) return true;
+      restore(i, old);
+      return false;
+    }
     Eigen::Vector3d u, w;
     if(!boundary_neighbours(v, u, w)) return false;
     const Eigen::Vector3d p = P(v), d = (w - u).normalized();
@@ -452,6 +461,40 @@ private:
 
   Eigen::Vector3d interpolated_normal(const Surface_point& sp) const { return m_surface.interpolated_normal(sp); }
 
+  // `true` unless vertex `v` was at a tip when the stage started and its one-ring now cuts the tip off:
+  // at a tip (an angle deficit above `tip_angle_deficit` at its starting position `p0` with its
+  // neighbours now) and with no fixed neighbour (a corner or a crease site holds the shape there), `p0`
+  // must lie within a tenth of the mean length of the edges from `p0` to the neighbours of the one-ring
+  // the vertex has now. Moved along the surface, the one vertex the CVT left at the tip of a thin part
+  // would otherwise cut the tip off, a little more at each round (the cow through cones at 3000
+  // vertices: Hausdorff distance 1.3 -> 2.5 % of its diagonal); away from tips nothing changes (the 35
+  // runs of the regression set give the same output)
+  bool keeps_the_shape_at(V v) const
+  {
+    typedef CGAL::Simple_cartesian<double> SK;
+    const Eigen::Vector3d& p0 = m_start[v.idx()];
+    double length = 0;
+    std::size_t k = 0;
+    std::vector<std::pair<V, V>> opposite;
+    for(V u : CGAL::vertices_around_target(m_mesh.halfedge(v), m_mesh)) {
+      if(m_fixed[u.idx()]) return true;  // a fixed neighbour (a corner, a crease site) holds the shape
+      length += (P(u) - p0).norm(), ++k;
+    }
+    for(F f : CGAL::faces_around_target(m_mesh.halfedge(v), m_mesh)) {
+      if(f == Mesh::null_face()) return true;
+      opposite.push_back(opposite_edge(corners(f), v));
+    }
+    if(k == 0 || angle_deficit(p0, opposite, [&](V x) { return P(x); }) <= tip_angle_deficit) return true;
+    const double tolerance = 0.1 * length / double(k);
+    auto point = [](const Eigen::Vector3d& x) { return SK::Point_3(x.x(), x.y(), x.z()); };
+    const SK::Point_3 q = point(p0);
+    for(const auto& e : opposite) {
+      const SK::Triangle_3 tri(point(P(v)), point(P(e.first)), point(P(e.second)));
+      if(!tri.is_degenerate() && CGAL::squared_distance(q, tri) <= tolerance * tolerance) return true;
+    }
+    return false;
+  }
+
   bool keeps_the_shape(V a, V b, V c, V d, bool repairs) const
   {
     return flip_keeps_the_shape(m_surface, P(a), P(b), P(c), P(d), repairs);
@@ -464,6 +507,7 @@ private:
   Mesh m_mesh;
   std::vector<Eigen::Matrix3d> m_Q;
   std::vector<char> m_fixed;
+  std::vector<Eigen::Vector3d> m_start;  // the positions when the stage started (keeps_the_shape_at())
   std::vector<char> m_slide;  // per vertex: slides along the input's boundary (find_sliding_vertices())
   std::size_t m_sliding = 0;
   std::vector<std::array<std::size_t, 2>> m_input_border;  // the input's boundary edges, sorted

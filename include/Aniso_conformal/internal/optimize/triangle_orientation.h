@@ -76,6 +76,25 @@ inline bool flip_keeps_the_shape(const Input_surface& surface, const Eigen::Vect
   return d_new <= std::max(2 * d_old, 0.05 * (c - d).norm());
 }
 
+// The angle deficit above which an output vertex is at a tip (the end of a horn, a tail, a finger, where
+// the CVT leaves one vertex): 2 pi minus the sum of its triangles' angles in space above 1 radian. The
+// surface optimisation neither moves such a vertex off the tip nor removes it (surface_optimizer.h,
+// crowded_vertices.h).
+inline constexpr double tip_angle_deficit = 1.0;
+
+// the angle deficit in space at `p`, of the triangles (p, a, b) for each (a, b) in `opposite` (the ring's
+// edges opposite the vertex)
+template <typename Opposite_edges, typename Position>
+double angle_deficit(const Eigen::Vector3d& p, const Opposite_edges& opposite, const Position& position)
+{
+  double angles = 0;
+  for(const auto& e : opposite) {
+    const Eigen::Vector3d x = position(e.first) - p, y = position(e.second) - p;
+    angles += std::atan2(x.cross(y).norm(), x.dot(y));
+  }
+  return 2 * 3.14159265358979323846 - angles;
+}
+
 } // namespace internal
 } // namespace Aniso_conformal
 
