@@ -1134,6 +1134,56 @@ BOOST_AUTO_TEST_CASE(surface_optimization_on_a_sphere_keeps_the_mesh_on_it_and_r
   BOOST_TEST(untouched.points == folded.points);
 }
 
+// a thorn: the sphere `s` with its upper half pulled into a tip at (0, 0, 2) (a cone of half-angle 35
+// degrees there), its ring of latitude next to the tip shifted by `shift` along x
+AC::Input_surface thorn(const AC::Input_surface& s, double shift = 0)
+{
+  std::vector<Eigen::Vector3d> pts;
+  const double top = s.points().back().z();
+  double ring = -1e300;  // the latitude next to the tip
+  for(const Eigen::Vector3d& p : s.points())
+    if(p.z() < top) ring = std::max(ring, p.z());
+  for(const Eigen::Vector3d& p : s.points()) {
+    const double z = p.z() / top, squeeze = z > 0 ? std::sqrt(1 - z) : 1.0;
+    Eigen::Vector3d q(p.x() * squeeze, p.y() * squeeze, z > 0 ? 2 * z : z);
+    if(p.z() == ring) q.x() += shift;
+    pts.push_back(q);
+  }
+  return AC::Input_surface(pts, s.faces());
+}
+
+BOOST_AUTO_TEST_CASE(surface_optimization_keeps_the_tip_of_a_thin_part)
+{
+  const AC::Input_surface input = thorn(uv_sphere(96, 64, 1.0));
+  const AC::Uniform_metric metric;
+  // a coarse mesh with one vertex at the tip, the ring around it off centre: the ring's centroid (where
+  // relocation moves the tip vertex) is off the tip
+  const AC::Remeshed_surface coarse = on_the_input(input, thorn(uv_sphere(12, 10, 1.0), 0.02));
+  const std::size_t tip = coarse.points.size() - 1;
+  const Eigen::Vector3d tip_point(0, 0, 2);
+  BOOST_REQUIRE((coarse.points[tip] - tip_point).norm() < 1e-9);
+  AC::Remeshed_surface out = coarse;
+  const AC::Surface_optimization_report r = AC::optimize_surface_mesh(input, metric, out, 5, true);
+  check_optimised(input, metric, coarse, out, r, {});
+  // the distance from the input's tip to the output, against the output's edges at the tip
+  double nearest = 1e300, edges = 0;
+  std::size_t k = 0;
+  for(const auto& f : out.faces) {
+    const Eigen::Vector3d a = out.points[f[0]], b = out.points[f[1]], c = out.points[f[2]];
+    for(double u = 0; u <= 1; u += 1.0 / 64)
+      for(double v = 0; u + v <= 1; v += 1.0 / 64) nearest = std::min(nearest, (a + u * (b - a) + v * (c - a) - tip_point).norm());
+    for(int j = 0; j < 3; ++j)
+      if(f[std::size_t(j)] == tip) edges += (out.points[f[std::size_t((j + 1) % 3)]] - out.points[tip]).norm(), ++k;
+  }
+  BOOST_REQUIRE(k > 0);
+  BOOST_TEST_MESSAGE("thorn, " << coarse.points.size() << " vertices: " << r.relocations << " moves, inverted " << r.inverted_before << " -> " << r.inverted_after << "; the tip vertex moved by "
+                     << (out.points[tip] - tip_point).norm() << ", the input's tip " << nearest << " from the output (edges at the tip "
+                     << edges / double(k) << ")");
+  BOOST_TEST(r.inverted_before == 0u);  // no repair: a repair may move a vertex off a tip
+  BOOST_TEST(r.relocations > 0u);
+  BOOST_TEST(nearest <= 0.1 * edges / double(k) + 1e-3);
+}
+
 BOOST_AUTO_TEST_CASE(surface_optimization_in_the_plane_keeps_the_boundary_and_repairs_a_fold)
 {
   auto square = [](double u, double v) { return Eigen::Vector3d(u, v, 0); };
