@@ -200,13 +200,10 @@ public:
     const double offset = unit(rng);
     std::vector<Point> sites(n);
     m_state.assign(n, Site_state());
-    m_vertex_sites.clear();
     for(std::size_t j = 0; j < k; ++j) {
       const int f = fixed[j].first, c = fixed[j].second;
       if(f < 0 || std::size_t(f) >= m_emb->corner_uv.size() || c < 0 || c > 2)
         throw Invalid_input("the cone domain: fixed site " + std::to_string(j) + " is not at a corner of a background face");
-      m_state[j].vertex = m_faces[std::size_t(f)][std::size_t(c)];
-      for(int h : m_itri->outgoing_halfedges(m_state[j].vertex)) m_vertex_sites.push_back({int(j), h});
       m_state[j].face = f;
       m_state[j].x = m_emb->corner_uv[std::size_t(f)][std::size_t(c)];
       m_state[j].point = m_state[j].x;
@@ -281,10 +278,7 @@ public:
     for(std::size_t i = 0; i < sites.size(); ++i) {
       cells[i].mass = acc[i][0];
       cells[i].energy = acc[i][3];
-      // (a site at a vertex is integrated from every face around it, its moments in their charts' frames:
-      // it is fixed, its centroid is the site)
-      cells[i].centroid = acc[i][0] > 0 && m_state[i].vertex < 0 ? m_state[i].frame(Eigen::Vector2d(acc[i][1] / acc[i][0], acc[i][2] / acc[i][0]))
-                                                                 : sites[i];
+      cells[i].centroid = acc[i][0] > 0 ? m_state[i].frame(Eigen::Vector2d(acc[i][1] / acc[i][0], acc[i][2] / acc[i][0])) : sites[i];
     }
   }
   /// @}
@@ -341,7 +335,6 @@ private:
     int face = -1;                   // the face it lies in
     Eigen::Vector2d x = Eigen::Vector2d::Zero();  // its position in that face's chart
     Rigid_motion_2 frame;            // that chart -> the site's frame
-    int vertex = -1;                 // a fixed site at a background vertex: that vertex (seen from each face around it)
   };
   struct Face_copy {
     int face;
@@ -411,7 +404,7 @@ private:
   void move_site(std::size_t i, const Point& p) const
   {
     Site_state& s = m_state[i];
-    if(p == s.point || s.vertex >= 0) return;  // a site at a vertex is fixed
+    if(p == s.point) return;
     if(!p.allFinite()) throw Convergence_failure("cone domain: site " + std::to_string(i) + " is not finite", 0);
     const Eigen::Vector2d d = s.frame.R.transpose() * (p - s.point);
     int f;
@@ -528,28 +521,12 @@ private:
   std::vector<Chart_points> chart_points() const
   {
     const std::size_t ns = m_state.size();
-    // per face, the sites in it (a site at a vertex in every face around it) and their positions in its chart
-    const std::size_t nf = m_itri->number_of_faces();
-    std::vector<int> start(nf + 1, 0);
-    for(const Site_state& s : m_state)
-      if(s.vertex < 0) ++start[std::size_t(s.face) + 1];
-    for(const auto& vs : m_vertex_sites) ++start[std::size_t(vs.second / 3) + 1];
-    for(std::size_t f = 0; f < nf; ++f) start[f + 1] += start[f];
-    std::vector<int> list(static_cast<std::size_t>(start[nf]));
-    std::vector<Eigen::Vector2d> where(static_cast<std::size_t>(start[nf]));
+    std::vector<int> start(m_itri->number_of_faces() + 1, 0), list(ns);
+    for(const Site_state& s : m_state) ++start[std::size_t(s.face) + 1];
+    for(std::size_t f = 0; f + 1 < start.size(); ++f) start[f + 1] += start[f];
     {
       std::vector<int> fill(start.begin(), start.end() - 1);
-      for(std::size_t i = 0; i < ns; ++i)
-        if(m_state[i].vertex < 0) {
-          const int j = fill[std::size_t(m_state[i].face)]++;
-          list[std::size_t(j)] = int(i);
-          where[std::size_t(j)] = m_state[i].x;
-        }
-      for(const auto& vs : m_vertex_sites) {
-        const int f = vs.second / 3, j = fill[std::size_t(f)]++;
-        list[std::size_t(j)] = vs.first;
-        where[std::size_t(j)] = m_emb->corner_uv[std::size_t(f)][std::size_t(vs.second % 3)];
-      }
+      for(std::size_t i = 0; i < ns; ++i) list[std::size_t(fill[std::size_t(m_state[i].face)]++)] = int(i);
     }
     if(m_band_width.size() != m_chart.size()) {
       m_band.assign(m_chart.size(), {});
@@ -566,24 +543,19 @@ private:
       }
       for(int attempt = 0;; ++attempt) {
         cp = Chart_points();
-        std::vector<std::pair<int, Eigen::Vector2d>> at_vertex;  // the sites at vertices added, where
-        auto add = [&](int j, const Rigid_motion_2& m) {
-          const int i = list[std::size_t(j)];
-          const Eigen::Vector2d x = m(where[std::size_t(j)]);
-          if(m_state[std::size_t(i)].vertex >= 0) {  // once per position in the chart
-            for(const auto& q : at_vertex)
-              if(q.first == i && (q.second - x).norm() <= 1e3 * m_tolerance) return;
-            at_vertex.push_back({i, x});
-          }
-          cp.points.push_back(x);
-          cp.original.push_back(i);
-          cp.motion.push_back(m);
-        };
         for(int f : chart.faces)
-          for(int j = start[std::size_t(f)]; j < start[std::size_t(f) + 1]; ++j) add(j, Rigid_motion_2());
+          for(int j = start[std::size_t(f)]; j < start[std::size_t(f) + 1]; ++j) {
+            cp.points.push_back(m_state[std::size_t(list[std::size_t(j)])].x);
+            cp.original.push_back(list[std::size_t(j)]);
+            cp.motion.push_back(Rigid_motion_2());
+          }
         cp.own = cp.points.size();
         for(const Face_copy& fc : m_band[c])
-          for(int j = start[std::size_t(fc.face)]; j < start[std::size_t(fc.face) + 1]; ++j) add(j, fc.motion);
+          for(int j = start[std::size_t(fc.face)]; j < start[std::size_t(fc.face) + 1]; ++j) {
+            cp.points.push_back(fc.motion(m_state[std::size_t(list[std::size_t(j)])].x));
+            cp.original.push_back(list[std::size_t(j)]);
+            cp.motion.push_back(fc.motion);
+          }
         cp.dt.build(cp.points);
         if(complete(chart, cp, m_band_width[c])) break;
         if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "chart %zu: %zu faces, radius %g, own %zu, points %zu, band %zu copies, width %g\n", c, chart.faces.size(), chart.radius, cp.own, cp.points.size(), m_band[c].size(), m_band_width[c]);
@@ -638,7 +610,6 @@ private:
   std::vector<char> m_is_cone;
   double m_total_mass = 0, m_tolerance = 0;
   mutable std::vector<Site_state> m_state;
-  std::vector<std::pair<int, int>> m_vertex_sites;  // (site, halfedge leaving its vertex) per face around a site at a vertex
   mutable std::vector<std::vector<Face_copy>> m_band;
   mutable std::vector<double> m_band_width;
   mutable std::size_t m_walk_steps = 0;
