@@ -129,6 +129,13 @@ struct Surface_optimization_report {
  * s = 0.2: theta_min 22.9 -> 29.4, G_avg 0.924 -> 0.926; Fig. 8: G_avg 0.909 -> 0.911; circular field at 4000:
  * 0.923 -> 0.924).
  *
+ * *Tips* are kept: a free vertex with an angle deficit above 1 radian in space and no fixed neighbour (the
+ * one vertex the CVT leaves at the tip of a horn, a tail, a finger) moves only while its one-ring stays
+ * within a tenth of its edge length of where it started (unless the move repairs an inverted triangle),
+ * and is never a crowded-vertex donor: moved toward its ring's centroid a little at each round it would
+ * cut the tip off (CGAL's cow through cones at 3000 vertices: Hausdorff distance 1.3 -> 2.5 % of the
+ * diagonal without this rule, 1.45 % with it).
+ *
  * Kept: the number of vertices, the topology (flips keep the genus and the boundary; an edge already
  * present is never created), the boundary vertices (but the sliding ones above, which stay on the
  * input's boundary) and the first `mesh.fixed_vertices` vertices (the CVT's fixed sites: the input's corners
