@@ -932,6 +932,28 @@ BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)
     BOOST_TEST((out.points[i] - out.surface_points[i].position).norm() < 1e-12);
 }
 
+// The nearest-site walk of the restricted Voronoi integration aims at a point inside each triangle. At a
+// corner, two sites can be equally near (at a cone every copy of a site around it is), and a walk that
+// stops at one whose cell touches the triangle only at that corner lost the whole triangle: the cone
+// domain's energy then jumped as sites moved (the CVT's line search failed) and the plane's L-shape lost
+// area at its corners.
+BOOST_AUTO_TEST_CASE(restricted_voronoi_keeps_a_triangle_whose_corner_is_a_tie)
+{
+  namespace I = AC::internal;
+  const std::vector<I::Background_triangle> tri = {
+      I::make_background_triangle({{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1)}}, {{1.0, 2.0, 3.0}}, 0)};
+  // sites 0 and 1 are both at distance 5 from the corner (0, 0) (exactly), but the triangle lies in the
+  // cell of site 1 (|y - s0|^2 - |y - s1|^2 = 16 x + 8 y >= 0 there); site 2 is far
+  const std::vector<Eigen::Vector2d> sites = {Eigen::Vector2d(-5, 0), Eigen::Vector2d(3, 4), Eigen::Vector2d(0, -50)};
+  const std::vector<int> start = {0, 2, 4, 6}, nbr = {1, 2, 0, 2, 0, 1};  // three sites: all Delaunay neighbours
+  std::vector<I::Cell_accumulator> out;
+  I::integrate_restricted_voronoi(tri, sites, start, nbr, 1, out);
+  BOOST_REQUIRE(out.size() == 3u);
+  BOOST_TEST(std::abs(out[1].mass - tri[0].mass) < 1e-14 * tri[0].mass);
+  BOOST_TEST(out[0].mass == 0.0);
+  BOOST_TEST(out[2].mass == 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(conformal_flip_budget_is_enforced)
 {
   // a 30 x 30 grid sheared 4:1: its thin triangles are far from Delaunay, the first flip pass needs

@@ -152,7 +152,7 @@ public:
   const Background_triangle& triangle(std::size_t f) const { return m_tri[f]; }
   bool in_one_cell(std::size_t, int&) const { return false; }
   int walk_start(std::size_t, int previous) const { return previous; }  // the triangles are in Morton order
-  const Eigen::Vector2d& walk_target(std::size_t f) const { return m_tri[f].p[0]; }
+  const Eigen::Vector2d& walk_target(std::size_t f) const { return m_tri[f].g; }  // inside T: see the kernel
   double distance(int s, const Eigen::Vector2d& y) const { return (m_sites[std::size_t(s)] - y).squaredNorm(); }
   Bisector bisector(std::size_t, int s, int n, Eigen::Vector2d& a, double& b) const
   {

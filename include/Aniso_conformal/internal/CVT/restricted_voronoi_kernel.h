@@ -144,7 +144,11 @@ const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const s
  *   walk_start(f, previous)            where the walk to T's nearest site starts (previous: the last
  *                                      walk's end in this chunk)
  *   walk_target(f), distance(s, y)     the point the walk approaches and the order of the sites'
- *                                      distances to it (smaller is nearer)
+ *                                      distances to it (smaller is nearer). It must lie inside T (the
+ *                                      centroid): the cell of its nearest site then meets T in a piece of
+ *                                      positive area. A corner would not do: at a tie the walk may stop
+ *                                      at a site whose cell touches T only there, and T would be lost
+ *                                      (at a cone vertex every copy of a site around the cone is a tie)
  *   bisector(f, s, n, a, b)            the points nearer to s than to n as the half-plane a.y <= b of
  *                                      T's frame, and what is known of it (Bisector)
  *   add_piece(f, s, poly, acc)         integrals over the clipped polygon (frame), about site s
