@@ -489,7 +489,9 @@ private:
       copies.push_back({f, Rigid_motion_2()});
       queue.push({0.0, copies.size() - 1});
     }
-    const std::size_t bound = 64 * chart.faces.size() + 4096;
+    // a tiny chart between cones may need a band over much of the surface (each face a few times around
+    // its cones), so the cap grows with the whole background, not only with the chart
+    const std::size_t bound = 64 * chart.faces.size() + 4 * m_itri->number_of_faces() + 4096;
     while(!queue.empty()) {
       const Face_copy fc = copies[queue.top().second];
       queue.pop();
