@@ -935,8 +935,7 @@ BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)
 // The nearest-site walk of the restricted Voronoi integration aims at a point inside each triangle. At a
 // corner, two sites can be equally near (at a cone every copy of a site around it is), and a walk that
 // stops at one whose cell touches the triangle only at that corner lost the whole triangle: the cone
-// domain's energy then jumped as sites moved (the CVT's line search failed) and the plane's L-shape lost
-// area at its corners.
+// domain's energy then jumped as sites moved (the CVT's line search failed).
 BOOST_AUTO_TEST_CASE(restricted_voronoi_keeps_a_triangle_whose_corner_is_a_tie)
 {
   namespace I = AC::internal;
