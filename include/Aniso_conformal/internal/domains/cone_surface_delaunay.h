@@ -547,8 +547,10 @@ private:
   }
 
   // The faces at `cluster` (and at the point `inside`, if >= 0) replaced: by a fan from a border point
-  // (inside < 0) or from `inside`. false (nothing done) unless they form a disk whose border is a cycle
-  // of distinct points (not `inside`), and, for a fan from the border, no diagonal doubles an edge.
+  // (inside < 0) or from `inside`. false (nothing done) unless they form a disk whose border is one cycle
+  // of points (not `inside`; distinct for a fan from `inside`); a fan from the border starts at a point
+  // met once on it (the border may pass a point twice: a site whose cell wraps around a sharp cone, the
+  // link a b a c of a cone) and no diagonal doubles an edge.
   bool fan_over_region(const std::set<int>& cluster, int inside)
   {
     std::set<int> region;
@@ -559,27 +561,38 @@ private:
       if(si.empty()) return false;
       for(int s : si) region.insert(s / 3);
     }
-    std::map<int, int> border;  // tail -> halfedge of the region whose twin is outside it
-    std::size_t border_edges = 0;
+    // the border: halfedges of the region whose twin is outside it, walked as one cycle (around each
+    // border point through the region's faces, so that a point met twice, a site whose cell wraps
+    // around a sharp cone, is passed correctly)
+    std::vector<int> border;
     for(int f : region)
       for(int k = 0; k < 3; ++k) {
         const int h = 3 * f + k;
         if(region.count(m_twin[std::size_t(h)] / 3)) continue;
-        ++border_edges;
-        if(std::size_t(m_tail[std::size_t(h)]) < m_nb || std::size_t(head(h)) < m_nb || !border.emplace(m_tail[std::size_t(h)], h).second)
-          return false;
+        if(std::size_t(m_tail[std::size_t(h)]) < m_nb || std::size_t(head(h)) < m_nb) return false;
+        border.push_back(h);
       }
     const std::size_t L = border.size();
     const std::size_t interior = cluster.size() + (inside >= 0 ? 1 : 0);
-    if(L < 3 || border_edges != L || region.size() + 2 != L + 2 * interior || border.count(inside)) return false;  // a disk: F = L + 2 V_inside - 2
-    std::vector<int> cycle = {border.begin()->second};
-    while(cycle.size() < L) {
-      const auto it = border.find(head(cycle.back()));
-      if(it == border.end()) return false;
-      cycle.push_back(it->second);
+    // a disk: F = L + 2 V_inside - 2; a digon (L = 2) only around a site (its star: two triangles on the
+    // same three points, whose doubled edge is flipped away after), as a last resort
+    if(L < (inside >= 0 && m_fan_doubling ? 2u : 3u) || region.size() + 2 != L + 2 * interior) return false;
+    std::vector<int> cycle = {border.front()};
+    while(cycle.size() <= L) {
+      int g = next(cycle.back());
+      for(std::size_t turns = 0; region.count(m_twin[std::size_t(g)] / 3); ++turns) {
+        if(turns > region.size()) return false;
+        g = next(m_twin[std::size_t(g)]);
+      }
+      if(g == cycle.front()) break;
+      cycle.push_back(g);
     }
-    if(head(cycle.back()) != m_tail[std::size_t(cycle.front())]) return false;
-    if(inside >= 0) {  // the star of `inside` over the whole border
+    if(cycle.size() != L) return false;  // several border cycles: not a disk
+    std::map<int, std::size_t> times;     // how often each border point is met
+    for(int h : cycle) ++times[m_tail[std::size_t(h)]];
+    if(times.count(inside)) return false;
+    if(inside >= 0) {  // the star of `inside` over the whole border (whose points must be distinct)
+      if(times.size() != L) return false;
       std::vector<New_halfedge> nh;
       for(std::size_t j = 0; j < L; ++j) {
         const int wj = m_tail[std::size_t(cycle[j])], wk = head(cycle[j]);
@@ -603,9 +616,11 @@ private:
     };
     for(std::size_t i = 0; i < L; ++i) {
       const int apex = m_tail[std::size_t(cycle[i])];
-      const std::set<int> joined = outside_neighbours(apex);
-      bool ok = true;
-      for(std::size_t j = 2; j + 1 < L && ok; ++j) ok = !joined.count(m_tail[std::size_t(cycle[(i + j) % L])]);
+      if(times[apex] != 1) continue;  // its diagonals would join it to itself
+      std::set<int> joined = outside_neighbours(apex);
+      if(m_fan_doubling) joined.clear();
+      bool ok = true;  // each diagonal joins the apex to a point it is not joined to yet (nor twice)
+      for(std::size_t j = 2; j + 1 < L && ok; ++j) ok = joined.insert(m_tail[std::size_t(cycle[(i + j) % L])]).second;
       if(!ok) continue;
       // fan triangles (apex, w_j, w_j+1) for j = 1 .. L - 2 (w_j the tail of cycle[i + j])
       std::vector<New_halfedge> nh;
@@ -652,6 +667,10 @@ private:
         m_stats.collapsed += still.size() - rest.size();
         if(rest.size() < still.size()) {
           left.swap(rest);
+          continue;
+        }
+        if(!m_fan_doubling) {  // and then fans whose diagonals may double an edge (flipped away below)
+          m_fan_doubling = true;
           continue;
         }
       }
@@ -749,6 +768,7 @@ private:
   const std::vector<char>* m_is_cone;
   std::size_t m_nb = 0;
   bool m_relaxed = false;  // step 4: merging without the link condition (once every strict merge is done)
+  bool m_fan_doubling = false;  // step 4, last resort: fans whose diagonals may double an edge (flipped away after)
   std::vector<int> m_tail, m_twin, m_out;
   std::vector<double> m_len;
   std::vector<char> m_alive;
