@@ -1452,6 +1452,46 @@ BOOST_AUTO_TEST_CASE(limb_body_is_bounded_by_cones_where_the_sphere_is_not)
   }
 }
 
+BOOST_AUTO_TEST_CASE(linearised_placement_adds_cones_as_a_fresh_factorisation_would)
+{
+  // the capacitance update of Linear_cone_placement::add() against the Laplacian factorised with every
+  // cone fixed from the start: the same u (sphere-like limb body, genus 0, four starting cones); and the
+  // gauge of genus 1 (no starting cone) handed over to the first cone
+  const AC::Intrinsic_triangulation t = background(limb_body::make_limb_body(), AC::Uniform_metric());
+  std::vector<int> cones = AC::internal::starting_cones(t, 0);
+  const std::vector<int> start = cones;
+  AC::internal::Linear_cone_placement grown(t, start);
+  const std::vector<double> u0 = grown.solve();
+  BOOST_TEST(*std::max_element(u0.begin(), u0.end()) - *std::min_element(u0.begin(), u0.end()) > 1.0);
+  std::vector<char> taken(t.number_of_vertices(), 0);
+  for(int c : cones) taken[std::size_t(c)] = 1;
+  std::vector<double> u = u0;
+  for(int k = 0; k < 5; ++k) {  // the greedy rule's next cones
+    const int v = AC::internal::next_cone(u, taken, false);
+    BOOST_TEST_REQUIRE(v >= 0);
+    taken[std::size_t(v)] = 1;
+    cones.push_back(v);
+    grown.add(v);
+    u = grown.solve();
+  }
+  const std::vector<double> direct = AC::internal::Linear_cone_placement(t, cones).solve();
+  double diff = 0, scale = 0;
+  for(std::size_t v = 0; v < u.size(); ++v) diff = std::max(diff, std::abs(u[v] - direct[v])), scale = std::max(scale, std::abs(direct[v]));
+  BOOST_TEST_MESSAGE("linearised placement: 5 cones added, max |u - direct| " << diff << " (max |u| " << scale << ")");
+  BOOST_TEST(diff <= 1e-8 * (1 + scale));
+  for(int c : cones) BOOST_TEST(u[std::size_t(c)] == 0.0);
+  // genus 1: vertex 0 is only the gauge; after the first cone, u is that of the cone alone
+  const AC::Intrinsic_triangulation torus = background(AC::make_dupin_cyclide(24, 16), AC::Uniform_metric());
+  AC::internal::Linear_cone_placement gauge(torus, {});
+  gauge.add(57);
+  gauge.add(200);
+  const std::vector<double> a = gauge.solve(), b = AC::internal::Linear_cone_placement(torus, {57, 200}).solve();
+  double dt = 0;
+  for(std::size_t v = 0; v < a.size(); ++v) dt = std::max(dt, std::abs(a[v] - b[v]));
+  BOOST_TEST(dt <= 1e-8);
+  BOOST_TEST(a[0] != 0.0);  // vertex 0 no longer fixed
+}
+
 BOOST_AUTO_TEST_CASE(cones_are_placed_on_a_torus_and_a_genus_2_surface)
 {
   // genus 1 starts from the flat torus (no cone), genus 2 from one cone taking the whole curvature

@@ -89,11 +89,16 @@ struct Cone_domain : internal::Domain_policy_base<Cone_embedding, Cone_domain_tr
     }
     d.add("cone_table", std::move(table), 4, "one row per cone: its position x, y, z on the input and its angle (degrees)");
     d.add("log_scale_factor_range", emb.u_range, "max u - min u of the cone metric (area distortion exp(2 range))");
-    d.add("start_log_scale_factor_range", emb.start_u_range, "the same with the starting cones only (four extreme points on genus 0)");
+    d.add("start_log_scale_factor_range", emb.start_u_range,
+          "the same with the starting cones only (four extreme points on genus 0), linearised (Poisson equation)");
+    d.add("linearised_cones", double(emb.linearised_cones), "cones placed by the linearised rounds (one factorisation)", true);
+    d.add("placement_solves", double(emb.solves), "Newton solves of the placement (nonlinear rounds)", true);
     d.add("charts", double(traits.number_of_charts()), "planar charts of the atlas", true);
     char text[200];
-    std::snprintf(text, sizeof(text), "%zu cones of %.0f to %.0f degrees; area distortion %.1f (%.3g with the starting cones)",
-                  emb.cones.size(), lo, hi, std::exp(2 * emb.u_range), std::exp(2 * emb.start_u_range));
+    std::snprintf(text, sizeof(text),
+                  "%zu cones of %.0f to %.0f degrees (%zu linearised, %zu Newton solves); area distortion %.1f (about %.3g with the "
+                  "starting cones)",
+                  emb.cones.size(), lo, hi, emb.linearised_cones, emb.solves, std::exp(2 * emb.u_range), std::exp(2 * emb.start_u_range));
     d.summary = text;
     return d;
   }

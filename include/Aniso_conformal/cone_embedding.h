@@ -59,10 +59,11 @@ struct Cone_embedding {
   std::vector<double> u;            ///< per background vertex, the log scale factor (flat length = exp(u) x metric length)
   std::vector<double> conformal_factor;  ///< per background vertex, `exp(-u)`: metric length over flat length (the CVT density is its square)
   double u_range = 0;        ///< max u - min u: the area distortion is `exp(2 u_range)`
-  double start_u_range = 0;  ///< the range of u with the starting cones only (four extreme points on genus 0)
+  double start_u_range = 0;  ///< the range of u with the starting cones only (four extreme points on genus 0), of the linearised problem
   int genus = 0;             ///< of the closed surface
   std::size_t iterations = 0;  ///< Newton iterations over every solve of the cone placement
-  std::size_t solves = 0;      ///< Newton solves of the cone placement
+  std::size_t solves = 0;      ///< Newton solves of the cone placement (the nonlinear rounds)
+  std::size_t linearised_cones = 0;  ///< cones placed by the linearised rounds, before the Newton solves
   std::size_t flips = 0;       ///< intrinsic Delaunay flips
   double residual = 0;         ///< max |target - angle sum| (radians)
   std::vector<int> chart_of_face;                          ///< per face, its chart
@@ -249,6 +250,7 @@ Cone_embedding cone_embedding(Intrinsic_triangulation& itri, const NamedParamete
   emb.genus = m.genus;
   emb.iterations = m.iterations;
   emb.solves = m.solves;
+  emb.linearised_cones = m.linearised_cones;
   emb.flips = m.flips;
   emb.residual = m.residual;
   emb.conformal_factor.resize(emb.u.size());

@@ -12,6 +12,8 @@
 #include <Aniso_conformal/internal/visitor_helper.h>
 
 #include <Eigen/Core>
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <cmath>
@@ -29,10 +31,8 @@
 //    a solution for any cone angles that satisfy Gauss-Bonnet);
 //  - place_cones(): cones that bound the area distortion, by the greedy method of Ben-Chen, Gotsman and
 //    Bunin 2008 ("Conformal flattening by curvature prescription and metric scaling", section 4).
-// Nothing in remesh() or the tool calls this yet. What comes next (issue 16, items 2-5): cut the surface
-// to a disk through the cones (and the homology generators for genus > 0), lay it out with the cut sides
-// glued by rigid motions, the CVT on the cone surface (copies across the cut and around each cone by its
-// rotation), the dual across the cut, and the automatic choice sphere / cones.
+// cone_embedding() (the cone domain) calls place_cones(); the linearised rounds of the placement are
+// Linear_cone_placement.
 
 namespace Aniso_conformal {
 namespace internal {
@@ -49,13 +49,15 @@ struct Cone_metric {
   std::vector<double> u;            // per vertex (number_of_vertices()), the log scale factor (dimensionless);
                                     // shifted so that the flat metric has the area of the triangulation's
   double u_range = 0;               // max u - min u; the area distortion is exp(2 u_range)
-  double start_u_range = 0;         // place_cones(): the range of u with the starting cones only
+  double start_u_range = 0;         // place_cones(): the range of u with the starting cones only (of the linearised
+                                    // problem unless positive_cones_only)
   int genus = 0;                    // of the closed surface
   std::size_t iterations = 0;       // Newton iterations, summed over the solves
   std::size_t solves = 0;           // Newton solves (one for solve_cone_metric(); one per cone set tried by place_cones())
   std::size_t flips = 0;            // intrinsic Delaunay flips (the first, metric-keeping pass and the solves')
   double residual = 0;              // max |target - angle sum| over every vertex, cones included (radians)
   std::size_t rejected_cones = 0;   // place_cones() with positive_cones_only: cones withdrawn (angle 2 pi or more)
+  std::size_t linearised_cones = 0; // place_cones(): cones placed by the linearised rounds (Linear_cone_placement)
 };
 
 // the bounds of place_cones()
@@ -240,6 +242,122 @@ std::vector<double> dirichlet_cone_solve(Intrinsic_triangulation& itri, const st
   return std::move(sol.u);
 }
 
+/*
+ * The linearised Dirichlet problem of the greedy placement, as Ben-Chen, Gotsman and Bunin 2008 solve
+ * it (section 4: the Poisson equation of the cotangent Laplacian, `L u = Theta - 2 pi`, u = 0 at the
+ * cones): one Newton step from u = 0 of dirichlet_cone_solve(), on `itri` as it is (intrinsic Delaunay
+ * for u = 0), with no flip. The Laplacian with u = 0 at the `base` cones is factorised once; each cone
+ * added afterwards is one more Dirichlet condition, imposed by the capacitance (Schur complement) method:
+ * u = L^-1 (g + sum_j lambda_j e_(a_j)) with the k x k system S lambda = -x_A, S_ij = (L^-1 e_(a_j))_(a_i),
+ * x = L^-1 g, so that adding a cone costs two triangular solves, not a factorisation, and the memory
+ * is that of one factor plus k^2 numbers. `base` empty (genus 1, no cone): vertex 0 holds the gauge
+ * until the first cone is added, which then becomes the base (the factorisation is redone once).
+ *
+ * Shapes: every vector of u has number_of_vertices() entries, 0 at the cones.
+ * \throws Convergence_failure if the factorisation or a triangular solve fails (a Laplacian with a
+ *         zero pivot: flat triangles), with the reason
+ */
+class Linear_cone_placement {
+public:
+  Linear_cone_placement(const Intrinsic_triangulation& itri, const std::vector<int>& base) : m_itri(itri)
+  {
+    factorise(base.empty() ? std::vector<int>{0} : base);
+    m_gauge_only = base.empty();
+  }
+
+  // adds a cone at vertex `v` (not a cone yet)
+  void add(int v)
+  {
+    if(m_gauge_only) {  // the gauge vertex was not a cone: start again from the new cone
+      factorise({v});
+      m_gauge_only = false;
+      return;
+    }
+    const int i = m_index[std::size_t(v)];
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(m_n), G;
+    e[i] = 1;
+    solve_into(e, G);
+    const Eigen::Index k = Eigen::Index(m_added.size());
+    m_added.push_back(i);
+    m_S.conservativeResize(k + 1, k + 1);
+    for(Eigen::Index j = 0; j <= k; ++j) m_S(j, k) = m_S(k, j) = G[m_added[std::size_t(j)]];
+  }
+
+  // u with the cones so far (0 at each), per vertex
+  std::vector<double> solve() const
+  {
+    Eigen::VectorXd rhs = m_g, x = m_x;
+    if(!m_added.empty()) {
+      Eigen::VectorXd xa(Eigen::Index(m_added.size()));
+      for(std::size_t j = 0; j < m_added.size(); ++j) xa[Eigen::Index(j)] = m_x[m_added[j]];
+      const Eigen::VectorXd lambda = m_S.ldlt().solve(-xa);
+      for(std::size_t j = 0; j < m_added.size(); ++j) rhs[m_added[j]] += lambda[Eigen::Index(j)];
+      solve_into(rhs, x);
+    }
+    std::vector<double> u(m_index.size(), 0.0);
+    for(std::size_t v = 0; v < m_index.size(); ++v)
+      if(m_index[v] >= 0) u[v] = x[m_index[v]];
+    for(int i : m_added) u[std::size_t(m_vertex[std::size_t(i)])] = 0;  // exactly, not to rounding
+    return u;
+  }
+
+private:
+  void factorise(const std::vector<int>& base)
+  {
+    const std::size_t nv = m_itri.number_of_vertices();
+    m_index.assign(nv, -1);
+    m_vertex.clear();
+    std::vector<char> fixed(nv, 0);
+    for(int c : base) fixed[std::size_t(c)] = 1;
+    for(std::size_t v = 0; v < nv; ++v)
+      if(!fixed[v]) m_index[v] = int(m_vertex.size()), m_vertex.push_back(int(v));
+    m_n = Eigen::Index(m_vertex.size());
+    std::vector<double> angle_sum(nv, 0.0);
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(12 * m_itri.number_of_faces());
+    const Euclidean_vertex_scaling geometry;
+    const std::vector<double> zero(nv, 0.0);
+    for(int f = 0; f < int(m_itri.number_of_faces()); ++f) {
+      bool deg;
+      const std::array<double, 3> l = geometry.face_lengths(m_itri, f, zero);
+      const std::array<double, 3> a = geometry.angles(l, deg);
+      const auto& c = m_itri.face_vertices(std::size_t(f));
+      for(int k = 0; k < 3; ++k) angle_sum[std::size_t(c[k])] += a[std::size_t(k)];
+      geometry.add_hessian(c, l, a, deg, m_index, triplets);
+    }
+    Eigen::SparseMatrix<double> H(m_n, m_n);
+    H.setFromTriplets(triplets.begin(), triplets.end());
+    for(Eigen::Index i = 0; i < m_n; ++i) H.coeffRef(i, i) += 1e-12;  // as the Newton solve: flat triangles zero a row
+    H.makeCompressed();
+    m_g.resize(m_n);
+    for(Eigen::Index i = 0; i < m_n; ++i) m_g[i] = angle_sum[std::size_t(m_vertex[std::size_t(i)])] - 2 * 3.14159265358979323846;
+    m_factor.cholmod_enabled = std::size_t(m_n) >= Newton_bounds().cholmod_min_unknowns;
+    std::string failure;
+    if(!m_factor.factorize(H, true, failure))
+      throw Convergence_failure("cone placement: the cotangent Laplacian could not be factorised (" + failure + ")",
+                                std::numeric_limits<double>::infinity());
+    m_added.clear();
+    m_S.resize(0, 0);
+    solve_into(m_g, m_x);
+  }
+  void solve_into(const Eigen::VectorXd& b, Eigen::VectorXd& x) const
+  {
+    if(!m_factor.solve(b, x) || !x.allFinite())
+      throw Convergence_failure(std::string("cone placement: the triangular solves of the cotangent Laplacian failed (") +
+                                    m_factor.backend() + ")",
+                                std::numeric_limits<double>::infinity());
+  }
+
+  const Intrinsic_triangulation& m_itri;
+  std::vector<int> m_index, m_vertex;  // vertex -> unknown (-1 at the base), unknown -> vertex
+  std::vector<int> m_added;            // unknowns of the cones added after the factorisation
+  Eigen::Index m_n = 0;
+  Sparse_factor m_factor;
+  Eigen::VectorXd m_g, m_x;  // angle sums - 2 pi, and L^-1 of it
+  Eigen::MatrixXd m_S;       // the capacitance matrix of the added cones
+  bool m_gauge_only = false;
+};
+
 // the index in `cones` of the cone with the largest angle sum in the metric scaled by `u` if that angle is
 // 2 pi or more (a cone of negative or no curvature), -1 otherwise
 inline int widest_cone(const Intrinsic_triangulation& itri, const std::vector<double>& u, const std::vector<int>& cones)
@@ -272,14 +390,22 @@ inline int next_cone(const std::vector<double>& u, const std::vector<char>& take
  * `adjust_edge_lengths()`) until the flat cone metric's range of u is at most
  * `options.max_log_range` (area distortion at most `exp(2 max_log_range)`): the greedy method of
  * Ben-Chen, Gotsman and Bunin 2008, section 4. Start: starting_cones() (genus 0: four extreme points;
- * genus 1: none, the flat torus; genus >= 2: one). Every round solves the Dirichlet problem u = 0 at the
- * cones, angle sum 2 pi elsewhere (their rule: each cone's curvature is what the solve gives it, so
- * Gauss-Bonnet holds), and puts the next cone at the vertex where |u| is largest (u = 0 at the cones:
+ * genus 1: none, the flat torus; genus >= 2: one). The cones are first placed on the linearised problem
+ * (Linear_cone_placement: the cotangent Laplacian factorised once, two triangular solves per cone, as
+ * Ben-Chen et al. do) until its range of u is within the budget; then, as long as the range of the
+ * nonlinear solution is not, the nonlinear rounds go on. Every nonlinear round solves the Dirichlet
+ * problem u = 0 at the cones, angle sum 2 pi elsewhere (their rule: each cone's curvature is what the
+ * solve gives it, so Gauss-Bonnet holds), and puts the next cone at the vertex where |u| is largest (u = 0 at the cones:
  * the distance to the cones' common scale; for the Dirichlet solution this is their rule, and |u - mean u|
  * is not: it kept choosing vertices at the cones' own scale while the body stayed expanded).
  *
- * Cones of either sign are kept by default. With `options.positive_cones_only` (genus 0), cone angles are
- * kept in (0, 2 pi): the next cone is sought where u < 0 only (where a cone takes positive curvature),
+ * The linearised rounds cut the placement's time 10 to 40 times on CGAL's limb models (cow 3.6 s ->
+ * 0.1 s, armadillo 32 s -> 2.5 s, man 36 s -> 0.9 s; benchmark/cones.md): one Newton solve, not one per
+ * cone; they underestimate the range where the limbs are long, so 0 to 12 nonlinear rounds follow.
+ * start_u_range is then that of the linearised problem.
+ *
+ * Cones of either sign are kept by default. With `options.positive_cones_only` (genus 0, only nonlinear
+ * rounds), cone angles are kept in (0, 2 pi): the next cone is sought where u < 0 only (where a cone takes positive curvature),
  * and while more than three cones are left, the widest cone is withdrawn and the metric solved again
  * whenever its angle is 2 pi or more (its vertex is not tried again; `rejected_cones` counts them); three
  * cones (the fewest whose curvatures, each below 2 pi, can sum to 4 pi) are never withdrawn, so with three
@@ -292,7 +418,8 @@ inline int next_cone(const std::vector<double>& u, const std::vector<char>& take
  *
  * The result's u is shifted so that the flat metric has the area of `itri`, as in solve_cone_metric()
  * with the same cones and angles (which reproduces it). Bounded: at most `max_cones` cones; a cone is
- * added only while fewer than `2 max_cones + 2` solves were made (withdrawals' included), and each
+ * added only while fewer than `2 max_cones + 2` Newton solves were made (withdrawals' included; the
+ * linearised rounds stop at `max_cones` cones too), and each
  * withdrawal removes a cone the start or an addition put, so there are at most `2 (2 max_cones + 2) + 4`
  * solves, each bounded by the Newton bounds of the named parameters (and their visitor).
  * \throws Invalid_input if `itri` has a boundary
@@ -315,13 +442,31 @@ Cone_metric place_cones(Intrinsic_triangulation& itri, const Cone_placement_opti
   std::vector<char> taken(nv, 0);
   m.cones = starting_cones(itri, m.genus);
   for(int c : m.cones) taken[std::size_t(c)] = 1;
-  std::vector<double> u = dirichlet_cone_solve(itri, m.cones, bounds, vis, m);
   const std::size_t max_solves = 2 * options.max_cones + 2;
   auto range_of = [](const std::vector<double>& x) {
     const auto mm = std::minmax_element(x.begin(), x.end());
     return *mm.second - *mm.first;
   };
-  m.start_u_range = range_of(u);
+  std::vector<double> u;
+  if(!options.positive_cones_only) {
+    // the linearised rounds: one factorisation, two triangular solves per cone
+    Linear_cone_placement linear(itri, m.cones);
+    u = linear.solve();
+    m.start_u_range = range_of(u);
+    while(range_of(u) > options.max_log_range && m.cones.size() < options.max_cones) {
+      const int v = next_cone(u, taken, false);
+      if(v < 0) break;
+      taken[std::size_t(v)] = 1;
+      m.cones.push_back(v);
+      linear.add(v);
+      u = linear.solve();
+      ++m.linearised_cones;
+    }
+    u = dirichlet_cone_solve(itri, m.cones, bounds, vis, m);
+  } else {
+    u = dirichlet_cone_solve(itri, m.cones, bounds, vis, m);
+    m.start_u_range = range_of(u);
+  }
   std::string stop;
   while(true) {
     // positive_cones_only: withdraw the widest cone if its curvature is not positive
