@@ -16,7 +16,8 @@
  * - `weighted_centroidal_Voronoi_tessellation()` (stage 4) calls `integrate()` for the energy, masses
  *   and centroids, `contains()` to reject L-BFGS steps that leave the domain, and `move_towards()` for
  *   Lloyd steps; it optimises the `Point`s coordinate by coordinate, and calls the optional hooks
- *   `project_to_tangent_plane()` and `project_to_domain()` of a curved domain if it has them;
+ *   `project_to_tangent_plane()` and `project_to_domain()` of a curved domain if it has them (and the
+ *   optional `line_search_halvings`);
  * - `extract_dual_mesh()` (stage 5) calls `dual_triangles()` for the output connectivity,
  *   `background_location()` to map every site back onto the input through the background
  *   `Intrinsic_triangulation`, and `number_of_fixed_sites()`;
@@ -123,6 +124,13 @@ public:
    * sphere returns `v - (x.v) x`)
    */
   Point project_to_tangent_plane(const Point& x, const Point& v) const;
+
+  /*!
+   * optional (detected at compile time): the most step lengths the L-BFGS line search tries (12 when
+   * absent); when present, the L-BFGS memory is also forgotten after a shortened step. For a domain
+   * whose energy jumps slightly where a site crosses a seam (`Cone_domain_traits`: 4).
+   */
+  static constexpr int line_search_halvings = 12;
 
   /// @}
 

@@ -82,6 +82,13 @@ public:
   };
   /// @}
 
+  /// The CVT's line search tries at most 4 step lengths here, not 12, and forgets its L-BFGS memory after
+  /// a shortened step: the energy on the cone surface jumps by about 1e-8 where a site crosses a seam of
+  /// a chart's band (one sheet around each cone), so the extra halvings find no descent and only cost
+  /// energy evaluations (cow, 3000 sites: 434 evaluations per 100 iterations with 12, 217 with 4;
+  /// benchmark/cones.md).
+  static constexpr int line_search_halvings = 4;
+
   /// \name Creation
   /// @{
   /// the atlas of `emb` over the background `itri` (flipped by `cone_embedding()`); `threads` workers (0 = all cores)

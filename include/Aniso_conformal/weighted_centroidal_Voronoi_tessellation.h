@@ -32,6 +32,19 @@ struct Has_project_to_domain : std::false_type {};
 template <typename D>
 struct Has_project_to_domain<D, std::void_t<decltype(std::declval<const D&>().project_to_domain(
                                     std::declval<const typename D::Point&>()))>> : std::true_type {};
+// Optional: `D::line_search_halvings` (an int constant), for a domain whose energy is continuous only up
+// to a small jump (the cone surface: a band of copies is one sheet around a cone, so a site crossing a
+// seam changes the energy by ~1e-8 where the gradient predicts ~1e-12): the line search stops after that
+// many halvings instead of 12 (more find no descent: they only cost energy evaluations) and the L-BFGS
+// memory is forgotten after a backtracked step (its curvature pairs straddle the jump).
+template <typename D, typename = void>
+struct Line_search_halvings : std::integral_constant<int, 12> {
+  static constexpr bool forget_after_backtracking = false;
+};
+template <typename D>
+struct Line_search_halvings<D, std::void_t<decltype(D::line_search_halvings)>> : std::integral_constant<int, D::line_search_halvings> {
+  static constexpr bool forget_after_backtracking = true;
+};
 template <typename D, typename = void>
 struct Has_project_to_tangent_plane : std::false_type {};
 template <typename D>
@@ -98,7 +111,8 @@ public:
   }
 
   // One L-BFGS iteration: the preconditioned two-loop direction, an Armijo backtracking line search (12
-  // halvings) that also rejects steps leaving the domain; returns false, changing nothing, if it fails.
+  // halvings, or the domain's Line_search_halvings) that also rejects steps leaving the domain; returns
+  // false, changing nothing, if it fails.
   bool lbfgs_step()
   {
     Eigen::VectorXd d = direction();
@@ -115,7 +129,8 @@ public:
     std::vector<Cell> trial_cells;
     double step = 1.0, E_trial = m_energy;
     bool accepted = false;
-    for(int k = 0; k < 12 && !accepted; ++k, step *= 0.5) {
+    int k = 0;
+    for(; k < Line_search_halvings<DomainTraits>::value && !accepted; ++k, step *= 0.5) {
       bool inside = true;
       for(std::size_t i = 0; i < m_free && inside; ++i) {
         const std::size_t s = m_fixed + i;
@@ -130,6 +145,9 @@ public:
       accepted = E_trial <= m_energy + 1e-4 * step * slope;
     }
     if(!accepted) return false;
+    if(Line_search_halvings<DomainTraits>::forget_after_backtracking && k > 1) {
+      m_S.clear(); m_Y.clear(); m_RHO.clear();
+    }
     Eigen::VectorXd g_new;
     gradient_of(trial, trial_cells, g_new);
     Eigen::VectorXd s_vec(m_g.size()), y_vec = g_new - m_g;
