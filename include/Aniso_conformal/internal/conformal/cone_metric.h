@@ -53,7 +53,7 @@ struct Cone_metric {
                                     // problem unless positive_cones_only)
   int genus = 0;                    // of the closed surface
   std::size_t iterations = 0;       // Newton iterations, summed over the solves
-  std::size_t solves = 0;           // Newton solves (one for solve_cone_metric(); one per cone set tried by place_cones())
+  std::size_t solves = 0;           // Newton solves (solve_cone_metric(): one; place_cones(): one per nonlinear round)
   std::size_t flips = 0;            // intrinsic Delaunay flips (the first, metric-keeping pass and the solves')
   double residual = 0;              // max |target - angle sum| over every vertex, cones included (radians)
   std::size_t rejected_cones = 0;   // place_cones() with positive_cones_only: cones withdrawn (angle 2 pi or more)
