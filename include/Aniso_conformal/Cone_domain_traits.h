@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/cone_embedding.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
+#include <Aniso_conformal/internal/domains/cone_charts.h>
 #include <Aniso_conformal/internal/domains/cone_surface_delaunay.h>
 #include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 #include <Aniso_conformal/internal/parallel_for.h>
@@ -247,7 +248,7 @@ public:
     if(i >= m_state.size() || !site.allFinite()) return false;
     move_site(i, site);
     face = m_state[i].face;
-    bary = barycentric(m_emb->corner_uv[std::size_t(face)], m_state[i].x).cwiseMax(0.0);
+    bary = internal::barycentric_2(m_emb->corner_uv[std::size_t(face)], m_state[i].x).cwiseMax(0.0);
     bary /= bary.sum();
     return true;
   }
@@ -328,42 +329,15 @@ public:
   /// @}
 
 private:
-  typedef internal::Indexed_delaunay_2::K K;
-
-  struct Chart {
-    std::vector<int> faces;  // in Morton order
-    std::vector<internal::Background_triangle> tri;
-    internal::Triangle_grid grid;
-    Eigen::Vector2d center = Eigen::Vector2d::Zero();
-    double radius = 0, mass = 0, area = 0;
-  };
+  typedef internal::Cone_chart Chart;
+  typedef internal::Cone_chart_points Chart_points;
+  typedef internal::Cone_face_copy Face_copy;
   struct Site_state {
     Point point = Point::Zero();     // the last position the CVT gave
     int face = -1;                   // the face it lies in
     Eigen::Vector2d x = Eigen::Vector2d::Zero();  // its position in that face's chart
     Rigid_motion_2 frame;            // that chart -> the site's frame
   };
-  struct Face_copy {
-    int face;
-    Rigid_motion_2 motion;  // the face's chart -> the band's chart
-  };
-  // a chart's sites (the first `own`) and copies, with their Delaunay triangulation and neighbours
-  struct Chart_points {
-    std::vector<Eigen::Vector2d> points;
-    std::vector<int> original;
-    std::vector<Rigid_motion_2> motion;
-    std::size_t own = 0;
-    internal::Indexed_delaunay_2 dt;
-    std::vector<int> start, nbr;
-  };
-
-  static Eigen::Vector3d barycentric(const std::array<Eigen::Vector2d, 3>& p, const Eigen::Vector2d& x)
-  {
-    const Eigen::Vector2d e1 = p[1] - p[0], e2 = p[2] - p[0], w = x - p[0];
-    const double det = e1.x() * e2.y() - e1.y() * e2.x();
-    const double b1 = (w.x() * e2.y() - w.y() * e2.x()) / det, b2 = (e1.x() * w.y() - e1.y() * w.x()) / det;
-    return Eigen::Vector3d(1 - b1 - b2, b1, b2);
-  }
 
   // Walks from x in face f straight to `target` (f's chart); returns the face reached, the position in its
   // chart and the motion from that chart to f's.
@@ -375,13 +349,13 @@ private:
     const std::size_t bound = 4 * m_itri->number_of_faces() + 16;
     for(std::size_t step = 0; step < bound; ++step) {
       const auto& p = m_emb->corner_uv[std::size_t(f)];
-      const Eigen::Vector3d b = barycentric(p, target);
+      const Eigen::Vector3d b = internal::barycentric_2(p, target);
       if(b.minCoeff() >= -1e-12) {
         f_out = f;
         x_out = target;
         return;
       }
-      const Eigen::Vector3d bx = barycentric(p, x);
+      const Eigen::Vector3d bx = internal::barycentric_2(p, x);
       int exit = -1;
       double first = 1e300;
       for(int k = 0; k < 3; ++k) {
@@ -434,22 +408,6 @@ private:
     for(std::size_t i = 0; i < sites.size(); ++i) move_site(i, sites[i]);
   }
 
-  // `true` if the interiors of the triangles a and b overlap (separating axis test; touching is not overlapping)
-  static bool triangles_overlap(const std::array<Eigen::Vector2d, 3>& a, const std::array<Eigen::Vector2d, 3>& b, double eps)
-  {
-    for(const auto* t : {&a, &b})
-      for(int k = 0; k < 3; ++k) {
-        const Eigen::Vector2d e = (*t)[std::size_t((k + 1) % 3)] - (*t)[std::size_t(k)];
-        const Eigen::Vector2d n(-e.y(), e.x());
-        const double len = n.norm();
-        if(!(len > 0)) continue;
-        double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
-        for(const auto& p : a) a0 = std::min(a0, n.dot(p) / len), a1 = std::max(a1, n.dot(p) / len);
-        for(const auto& p : b) b0 = std::min(b0, n.dot(p) / len), b1 = std::max(b1, n.dot(p) / len);
-        if(a1 <= b0 + eps || b1 <= a0 + eps) return false;
-      }
-    return true;
-  }
 
   // The copies of the faces within `width` of chart c (beyond its own): a Dijkstra from the chart across
   // the transitions by the distance of a copy's centroid to the chart's centre, keeping a copy only if it
@@ -480,7 +438,7 @@ private:
         const auto it = grid.find(k);
         if(it == grid.end()) continue;
         for(std::size_t i : it->second)
-          if(triangles_overlap(q, placed[i], eps)) return true;
+          if(internal::triangles_overlap(q, placed[i], eps)) return true;
       }
       return false;
     };
@@ -566,7 +524,7 @@ private:
             cp.motion.push_back(fc.motion);
           }
         cp.dt.build(cp.points);
-        if(complete(chart, cp, m_band_width[c])) break;
+        if(internal::chart_is_complete(chart, cp, m_band_width[c])) break;
         if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "chart %zu: %zu faces, radius %g, own %zu, points %zu, band %zu copies, width %g\n", c, chart.faces.size(), chart.radius, cp.own, cp.points.size(), m_band[c].size(), m_band_width[c]);
         if(attempt == 8)
           throw Convergence_failure("cone domain: the Voronoi cells of chart " + std::to_string(c) + " are not complete within a band of width " +
@@ -580,36 +538,6 @@ private:
     return out;
   }
 
-  // every Delaunay circle at an own site or centred over the chart lies within `width` of it
-  static bool complete(const Chart& chart, const Chart_points& cp, double width)
-  {
-    if(cp.points.size() < 3) return false;
-    for(auto f = cp.dt.dt.all_faces_begin(); f != cp.dt.dt.all_faces_end(); ++f) {
-      bool at_own = false;
-      for(int k = 0; k < 3; ++k)
-        if(!cp.dt.dt.is_infinite(f->vertex(k)) && std::size_t(f->vertex(k)->info()) < cp.own) at_own = true;
-      if(cp.dt.dt.is_infinite(f)) {
-        if(at_own && std::getenv("CONE_DEBUG")) {
-          for(int k = 0; k < 3; ++k)
-            if(!cp.dt.dt.is_infinite(f->vertex(k)) && std::size_t(f->vertex(k)->info()) < cp.own) {
-              const Eigen::Vector2d x = cp.points[std::size_t(f->vertex(k)->info())];
-              std::fprintf(stderr, "  own site %d on the hull at (%g %g), %g from the centre\n", cp.original[std::size_t(f->vertex(k)->info())], x.x(), x.y(), (x - chart.center).norm());
-            }
-        }
-        if(at_own) return false;
-        continue;
-      }
-      const K::Point_2 c = cp.dt.dt.circumcenter(f);
-      const Eigen::Vector2d cc(c.x(), c.y());
-      const double d = (cc - chart.center).norm();
-      const double r = (cc - cp.points[std::size_t(f->vertex(0)->info())]).norm();
-      // the circles of the Voronoi vertices over the chart (and a third of the band beyond, where the cells
-      // of copies that reach into the chart have theirs)
-      if(!at_own && d > chart.radius + width / 3) continue;
-      if(d + r > chart.radius + width) return false;
-    }
-    return true;
-  }
 
   const Intrinsic_triangulation* m_itri;
   const Cone_embedding* m_emb;

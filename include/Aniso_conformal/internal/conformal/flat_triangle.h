@@ -4,6 +4,8 @@
 #ifndef ANISO_CONFORMAL_INTERNAL_CONFORMAL_FLAT_TRIANGLE_H
 #define ANISO_CONFORMAL_INTERNAL_CONFORMAL_FLAT_TRIANGLE_H
 
+#include <Eigen/Core>
+
 #include <array>
 
 namespace Aniso_conformal {
@@ -21,6 +23,16 @@ inline bool flat_triangle_angles(const std::array<double, 3>& l, std::array<doub
       return true;
     }
   return false;
+}
+
+// The barycentric coordinates of `x` in the planar triangle `p` (its corners in order; affine
+// coordinates, negative outside). The triangle must not be degenerate (the result is not finite then).
+inline Eigen::Vector3d barycentric_2(const std::array<Eigen::Vector2d, 3>& p, const Eigen::Vector2d& x)
+{
+  const Eigen::Vector2d e1 = p[1] - p[0], e2 = p[2] - p[0], w = x - p[0];
+  const double det = e1.x() * e2.y() - e1.y() * e2.x();
+  const double b1 = (w.x() * e2.y() - w.y() * e2.x()) / det, b2 = (e1.x() * w.y() - e1.y() * w.x()) / det;
+  return Eigen::Vector3d(1 - b1 - b2, b1, b2);
 }
 
 } // namespace internal

@@ -1,0 +1,101 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_DOMAINS_CONE_CHARTS_H
+#define ANISO_CONFORMAL_INTERNAL_DOMAINS_CONE_CHARTS_H
+
+#include <Aniso_conformal/cone_embedding.h>
+#include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
+#include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+// The charts of Cone_domain_traits' atlas of the cone surface (each a patch of background faces laid out
+// in one plane, with a band of copies of the faces around it, joined to their own charts by rigid motions)
+// and the planar tests its band and its Delaunay triangulations need.
+
+namespace Aniso_conformal {
+namespace internal {
+
+// one chart: its faces, their triangles in its plane with a grid over them, and its extent
+struct Cone_chart {
+  std::vector<int> faces;  // in Morton order
+  std::vector<Background_triangle> tri;
+  Triangle_grid grid;
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double radius = 0, mass = 0, area = 0;
+};
+struct Cone_face_copy {
+  int face;
+  Rigid_motion_2 motion;  // the face's chart -> the band's chart
+};
+// a chart's sites (the first `own`) and copies, with their Delaunay triangulation and neighbours
+struct Cone_chart_points {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<int> original;
+  std::vector<Rigid_motion_2> motion;
+  std::size_t own = 0;
+  Indexed_delaunay_2 dt;
+  std::vector<int> start, nbr;
+};
+
+// `true` if the interiors of the triangles a and b overlap (separating axis test; touching is not overlapping)
+inline bool triangles_overlap(const std::array<Eigen::Vector2d, 3>& a, const std::array<Eigen::Vector2d, 3>& b, double eps)
+{
+  for(const auto* t : {&a, &b})
+    for(int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d e = (*t)[std::size_t((k + 1) % 3)] - (*t)[std::size_t(k)];
+      const Eigen::Vector2d n(-e.y(), e.x());
+      const double len = n.norm();
+      if(!(len > 0)) continue;
+      double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
+      for(const auto& p : a) a0 = std::min(a0, n.dot(p) / len), a1 = std::max(a1, n.dot(p) / len);
+      for(const auto& p : b) b0 = std::min(b0, n.dot(p) / len), b1 = std::max(b1, n.dot(p) / len);
+      if(a1 <= b0 + eps || b1 <= a0 + eps) return false;
+    }
+  return true;
+}
+
+// `true` if the Delaunay triangulation of a chart's sites and copies (`cp`) is complete over the chart:
+// every Delaunay circle at an own site or centred over the chart lies within `width` of it
+inline bool chart_is_complete(const Cone_chart& chart, const Cone_chart_points& cp, double width)
+{
+  if(cp.points.size() < 3) return false;
+  for(auto f = cp.dt.dt.all_faces_begin(); f != cp.dt.dt.all_faces_end(); ++f) {
+    bool at_own = false;
+    for(int k = 0; k < 3; ++k)
+      if(!cp.dt.dt.is_infinite(f->vertex(k)) && std::size_t(f->vertex(k)->info()) < cp.own) at_own = true;
+    if(cp.dt.dt.is_infinite(f)) {
+      if(at_own && std::getenv("CONE_DEBUG")) {
+        for(int k = 0; k < 3; ++k)
+          if(!cp.dt.dt.is_infinite(f->vertex(k)) && std::size_t(f->vertex(k)->info()) < cp.own) {
+            const Eigen::Vector2d x = cp.points[std::size_t(f->vertex(k)->info())];
+            std::fprintf(stderr, "  own site %d on the hull at (%g %g), %g from the centre\n", cp.original[std::size_t(f->vertex(k)->info())], x.x(), x.y(), (x - chart.center).norm());
+          }
+      }
+      if(at_own) return false;
+      continue;
+    }
+    const Indexed_delaunay_2::K::Point_2 c = cp.dt.dt.circumcenter(f);
+    const Eigen::Vector2d cc(c.x(), c.y());
+    const double d = (cc - chart.center).norm();
+    const double r = (cc - cp.points[std::size_t(f->vertex(0)->info())]).norm();
+    // the circles of the Voronoi vertices over the chart (and a third of the band beyond, where the cells
+    // of copies that reach into the chart have theirs)
+    if(!at_own && d > chart.radius + width / 3) continue;
+    if(d + r > chart.radius + width) return false;
+  }
+  return true;
+}
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_DOMAINS_CONE_CHARTS_H
