@@ -19,6 +19,7 @@
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/internal/remesh/hole_patches.h>
+#include <Aniso_conformal/internal/remesh/loop_sites.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/measure_features.h>

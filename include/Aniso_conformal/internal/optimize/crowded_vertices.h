@@ -71,43 +71,8 @@ public:
       }
       std::sort(thin.begin(), thin.end());
       if(attempt == 0) report.candidates = thin.size();
-      // the donors: free vertices inside, the most crowded (shortest edge in the metric) first, each with
-      // its star retriangulated without it (the 4 donors_tried most crowded whose removal is admissible)
-      std::vector<std::pair<double, std::size_t>> crowd;
-      for(std::size_t v = mesh.fixed_vertices; v < nv; ++v) {
-        if(border[v] || moved[v]) continue;
-        double shortest = 1e300;
-        for(std::size_t w : neighbours(v)) shortest = std::min(shortest, metric_length(v, w));
-        crowd.emplace_back(shortest, v);
-      }
-      std::sort(crowd.begin(), crowd.end());
-      struct Donor {
-        std::size_t v;
-        std::vector<Face> hole;   // its star without it
-        Local_score ring, removal;
-      };
-      std::vector<Donor> donors;
-      for(const auto& c : crowd) {
-        if(donors.size() >= 4 * donors_tried) break;
-        Donor d;
-        d.v = c.second;
-        std::vector<std::pair<std::size_t, std::size_t>> opposite;
-        for(std::size_t f : faces_at[d.v]) {
-          d.ring.add(existing(mesh.faces[f]));
-          const Face& t = mesh.faces[f];
-          const int k = t[0] == d.v ? 0 : t[1] == d.v ? 1 : 2;
-          opposite.push_back({t[std::size_t((k + 1) % 3)], t[std::size_t((k + 2) % 3)]});
-        }
-        if(d.ring.inverted > 0) continue;
-        // not the one vertex at a tip: its star without it would cut the tip off
-        if(!surface.is_planar() &&
-           angle_deficit(mesh.points[d.v], opposite, [&](std::size_t x) -> const Eigen::Vector3d& { return mesh.points[x]; }) > tip_angle_deficit)
-          continue;
-        d.hole = retriangulate_star(d.v, faces_at[d.v]);
-        if(d.hole.empty()) continue;
-        for(const Face& h : d.hole) d.removal.add(existing(h));
-        donors.push_back(std::move(d));
-      }
+      // the donors: free vertices inside, the most crowded first
+      const std::vector<Donor> donors = crowded_donors(moved, 4 * donors_tried);
       bool done = false;
       for(const auto& th : thin) {
         if(done) break;
@@ -128,20 +93,7 @@ public:
           continue;
         }
         // the donor's star and its retriangulation stay apart from the split's region (3 rings of a and b)
-        std::vector<char> near(nv, 0);
-        std::vector<std::size_t> layer{a, b};
-        near[a] = near[b] = 1;
-        for(int r = 0; r < 3; ++r) {
-          std::vector<std::size_t> next;
-          for(std::size_t x : layer)
-            for(std::size_t f : faces_at[x])
-              for(std::size_t y : mesh.faces[f])
-                if(!near[y]) {
-                  near[y] = 1;
-                  next.push_back(y);
-                }
-          layer.swap(next);
-        }
+        const std::vector<char> near = rings_around(a, b, 3);
         std::size_t tries = 0;
         for(const Donor& dn : donors) {
           if(tries >= donors_tried) break;
@@ -184,6 +136,72 @@ public:
 
 private:
   static constexpr std::size_t none = std::size_t(-1);
+
+  // a crowded vertex that may give its number to a split: its star without it (`hole`), and the scores of
+  // its star (`ring`) and of that retriangulation (`removal`)
+  struct Donor {
+    std::size_t v;
+    std::vector<Face> hole;   // its star without it
+    Local_score ring, removal;
+  };
+
+  // The donors: free vertices inside not `moved` yet, the most crowded (shortest edge in the metric)
+  // first, each with its star retriangulated without it; at most `most`, those whose removal is admissible
+  // (no inverted triangle in the star, not the one vertex at a tip, a retriangulation found).
+  std::vector<Donor> crowded_donors(const std::vector<char>& moved, std::size_t most) const
+  {
+    std::vector<std::pair<double, std::size_t>> crowd;
+    for(std::size_t v = mesh.fixed_vertices; v < nv; ++v) {
+      if(border[v] || moved[v]) continue;
+      double shortest = 1e300;
+      for(std::size_t w : neighbours(v)) shortest = std::min(shortest, metric_length(v, w));
+      crowd.emplace_back(shortest, v);
+    }
+    std::sort(crowd.begin(), crowd.end());
+    std::vector<Donor> donors;
+    for(const auto& c : crowd) {
+      if(donors.size() >= most) break;
+      Donor d;
+      d.v = c.second;
+      std::vector<std::pair<std::size_t, std::size_t>> opposite;
+      for(std::size_t f : faces_at[d.v]) {
+        d.ring.add(existing(mesh.faces[f]));
+        const Face& t = mesh.faces[f];
+        const int k = t[0] == d.v ? 0 : t[1] == d.v ? 1 : 2;
+        opposite.push_back({t[std::size_t((k + 1) % 3)], t[std::size_t((k + 2) % 3)]});
+      }
+      if(d.ring.inverted > 0) continue;
+      // not the one vertex at a tip: its star without it would cut the tip off
+      if(!surface.is_planar() &&
+         angle_deficit(mesh.points[d.v], opposite, [&](std::size_t x) -> const Eigen::Vector3d& { return mesh.points[x]; }) > tip_angle_deficit)
+        continue;
+      d.hole = retriangulate_star(d.v, faces_at[d.v]);
+      if(d.hole.empty()) continue;
+      for(const Face& h : d.hole) d.removal.add(existing(h));
+      donors.push_back(std::move(d));
+    }
+    return donors;
+  }
+
+  // 1 for the vertices within `rings` rings of a or b (a and b included)
+  std::vector<char> rings_around(std::size_t a, std::size_t b, int rings) const
+  {
+    std::vector<char> near(nv, 0);
+    std::vector<std::size_t> layer{a, b};
+    near[a] = near[b] = 1;
+    for(int r = 0; r < rings; ++r) {
+      std::vector<std::size_t> next;
+      for(std::size_t x : layer)
+        for(std::size_t f : faces_at[x])
+          for(std::size_t y : mesh.faces[f])
+            if(!near[y]) {
+              near[y] = 1;
+              next.push_back(y);
+            }
+      layer.swap(next);
+    }
+    return near;
+  }
 
     // the split of edge (a, b) at its midpoint on the input, the new vertex numbered `m` (a number no
     // vertex has): the faces (a, b, c) and (b, a, d) become (a, m, c), (m, b, c), (b, m, d), (m, a, d);
