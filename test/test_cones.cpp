@@ -155,6 +155,9 @@ BOOST_AUTO_TEST_CASE(cone_domain_models_its_concepts)
   // surface (5.3994 of 5.4027), where the other domains hold it to 1e-6: some of the background next to the
   // four cones is in no chart's cell. Bounded here at 1e-3 so that it cannot grow unseen.
   test::check_domain_concept<AC::Cone_domain>(AC::make_ellipsoid(3), AC::make_square_background(AC::Uniform_metric(), 300), 200, 1e-3);
+  // its fewest vertices are those of the genus (the tetrahedron on a sphere)
+  BOOST_CHECK_NO_THROW(AC::Cone_domain::check_number_of_vertices(AC::make_ellipsoid(3), 4));
+  BOOST_CHECK_THROW(AC::Cone_domain::check_number_of_vertices(AC::make_ellipsoid(3), 3), AC::Invalid_input);
 }
 
 BOOST_AUTO_TEST_CASE(delaunay_of_points_on_the_tetrahedron_is_a_closed_triangulation_of_them)

@@ -102,6 +102,17 @@ BOOST_AUTO_TEST_CASE(hyperbolic_domain_models_its_concepts)
   test::check_domain_concept<AC::Hyperbolic_domain>(eight_1k(), AC::make_dupin_cyclide(24, 16), 200);
 }
 
+// The fewest vertices of a closed surface of genus g (Ringel and Jungerman; 10 for genus 2, not Heawood's 9),
+// shared by the four closed domains, and the bound the hyperbolic domain enforces
+BOOST_AUTO_TEST_CASE(closed_domains_refuse_fewer_vertices_than_the_smallest_triangulation)
+{
+  const std::size_t fewest[] = {4, 7, 10, 10, 11, 12, 12, 13, 14, 14, 15};
+  for(int g = 0; g <= 10; ++g) BOOST_TEST(AC::Hyperbolic_domain::minimum_number_of_vertices(g) == fewest[g], "genus " << g);
+  const AC::Input_surface eight = eight_1k();  // genus 2
+  BOOST_CHECK_NO_THROW(AC::Hyperbolic_domain::check_number_of_vertices(eight, 10));
+  BOOST_CHECK_THROW(AC::Hyperbolic_domain::check_number_of_vertices(eight, 9), AC::Invalid_input);
+}
+
 BOOST_AUTO_TEST_CASE(hyperboloid_primitives)
 {
   namespace I = AC::internal;

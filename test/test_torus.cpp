@@ -96,6 +96,9 @@ BOOST_AUTO_TEST_CASE(flat_torus_domain_models_its_concepts)
   const AC::Input_surface octahedron = AC::Input_surface({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
                                            {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}}, {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}});
   test::check_domain_concept<AC::Flat_torus_domain>(AC::make_dupin_cyclide(24, 16), octahedron, 200);
+  // the fewest vertices of a torus: 7 (Moebius' torus)
+  BOOST_CHECK_NO_THROW(AC::Flat_torus_domain::check_number_of_vertices(AC::make_dupin_cyclide(24, 16), 7));
+  BOOST_CHECK_THROW(AC::Flat_torus_domain::check_number_of_vertices(AC::make_dupin_cyclide(24, 16), 6), AC::Invalid_input);
 }
 
 // the flat torus has none of the optional hooks of a curved domain: its CVT is the unconstrained one

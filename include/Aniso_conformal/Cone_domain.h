@@ -7,7 +7,6 @@
 #include <Aniso_conformal/Cone_domain_traits.h>
 #include <Aniso_conformal/Domain_diagnostics.h>
 #include <Aniso_conformal/Exceptions.h>
-#include <Aniso_conformal/Hyperbolic_domain.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/cone_embedding.h>
@@ -30,7 +29,9 @@ namespace Aniso_conformal {
  * distorts area beyond what double precision or the CVT can carry (long limbs, thin handles; issue 16):
  * stage 3 is `cone_embedding()` (cones placed greedily until the range of the log scale factor is at most
  * 2, an atlas of planar charts), stages 4 and 5 run in `Cone_domain_traits`. Reports the cones, their
- * angles and the area distortion.
+ * angles and the area distortion. `fits()` a closed surface of any genus; `check_number_of_vertices()`
+ * throws `Invalid_input` below the smallest triangulation of the genus (4 for the sphere, 7 for the
+ * torus, `Hyperbolic_domain::minimum_number_of_vertices()` above).
  *
  * The input's corners and crease sites are fixed sites at background vertices, as in the other closed
  * domains. Not yet: surfaces with holes (refused: `fits()`; the plane, the sphere and the other closed
@@ -38,7 +39,7 @@ namespace Aniso_conformal {
  *
  * \cgalModels `ParametricDomain`
  */
-struct Cone_domain : internal::Domain_policy_base<Cone_embedding, Cone_domain_traits> {
+struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_domain_traits, 0, std::numeric_limits<int>::max()> {
   static constexpr Parametric_domain kind = Parametric_domain::CONE;  ///< its tag
 
   /// `true`: the default surface optimisation (`Surface_optimization::REPAIR`) runs always here, as
@@ -49,15 +50,6 @@ struct Cone_domain : internal::Domain_policy_base<Cone_embedding, Cone_domain_tr
   static constexpr bool optimizes_on_the_surface_by_default = true;
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces (without boundary) of any genus"; }
-  /// `true` for a closed surface
-  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 0, std::numeric_limits<int>::max()); }
-  /// \throws Invalid_input below the smallest triangulation of the genus (4 for the sphere, 7 for the torus,
-  ///         `Hyperbolic_domain::minimum_number_of_vertices()` above)
-  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
-  {
-    const int g = s.genus();
-    require_vertices(s, n, g == 0 ? 4 : g == 1 ? 7 : Hyperbolic_domain::minimum_number_of_vertices(g), "the smallest triangulation of that genus");
-  }
   /// stage 3: `cone_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)

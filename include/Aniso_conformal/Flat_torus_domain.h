@@ -25,22 +25,17 @@ namespace Aniso_conformal {
  * \ingroup PkgAnisoConformalDomains
  * the flat torus `R^2 / L`, for closed surfaces of genus 1: stage 3 is `flat_torus_embedding()`
  * (flat metric, tree-cotree cut, lattice reduced by Lagrange-Gauss), stages 4 and 5 run in
- * `Euclidean_periodic_domain_traits`. Reports the lattice and its layout error.
+ * `Euclidean_periodic_domain_traits`. Reports the lattice and its layout error. `fits()` a closed
+ * surface of genus 1; `check_number_of_vertices()` throws `Invalid_input` below 7 (the smallest torus
+ * triangulation, Moebius' torus).
  *
  * \cgalModels `ParametricDomain`
  */
-struct Flat_torus_domain : internal::Domain_policy_base<Flat_torus_embedding, Euclidean_periodic_domain_traits> {
+struct Flat_torus_domain : internal::Closed_domain_policy_base<Flat_torus_embedding, Euclidean_periodic_domain_traits, 1, 1> {
   static constexpr Parametric_domain kind = Parametric_domain::FLAT_TORUS;  ///< its tag
 
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces of genus 1"; }
-  /// `true` for a closed surface of genus 1
-  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 1, 1); }
-  /// \throws Invalid_input below 7 vertices (the smallest torus triangulation, Moebius' torus)
-  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
-  {
-    require_vertices(s, n, 7, "the smallest torus triangulation");
-  }
   /// stage 3: `flat_torus_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)

@@ -31,31 +31,22 @@ namespace Aniso_conformal {
  * the hyperbolic disk modulo a Fuchsian group, for closed surfaces of genus 2 or more: stage 3 is
  * `hyperbolic_embedding()` (hyperbolic discrete conformal metric, fundamental domain and deck
  * transformations), stages 4 and 5 run in `Hyperbolic_klein_domain_traits`. Reports how well the group's
- * relations hold and how many tiles the CVT's band of images reached.
+ * relations hold and how many tiles the CVT's band of images reached. `fits()` a closed surface of genus 2
+ * or more; `check_number_of_vertices()` throws `Invalid_input` below `minimum_number_of_vertices(genus)`.
  *
  * \cgalModels `ParametricDomain`
  */
-struct Hyperbolic_domain : internal::Domain_policy_base<Hyperbolic_embedding, Hyperbolic_klein_domain_traits> {
+struct Hyperbolic_domain
+    : internal::Closed_domain_policy_base<Hyperbolic_embedding, Hyperbolic_klein_domain_traits, 2, std::numeric_limits<int>::max()> {
   static constexpr Parametric_domain kind = Parametric_domain::HYPERBOLIC;  ///< its tag
 
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces of genus 2 or more"; }
-  /// `true` for a closed surface of genus 2 or more
-  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 2, std::numeric_limits<int>::max()); }
   /*!
    * the fewest vertices of a triangulation of the closed surface of genus `g >= 1` (Ringel and
    * Jungerman: Heawood's bound `ceil((7 + sqrt(1 + 48 g)) / 2)`, except 10 for genus 2)
    */
-  static std::size_t minimum_number_of_vertices(int g)
-  {
-    if(g == 2) return 10;
-    return std::size_t(std::ceil((7 + std::sqrt(1.0 + 48.0 * g)) / 2 - 1e-9));
-  }
-  /// \throws Invalid_input below `minimum_number_of_vertices(genus)`
-  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
-  {
-    require_vertices(s, n, minimum_number_of_vertices(s.genus()), "the smallest triangulation of that genus");
-  }
+  static std::size_t minimum_number_of_vertices(int g) { return internal::minimum_vertices_of_closed_surface(g); }
   /*!
    * the hyperbolic spacing `sqrt(A / n) 2 s exp(u*)` of `n` sites where the conformal metric shrinks the
    * surface most: `A` is the metric area of `itri` (Heron on its lengths), `s` and `u` the embedding's

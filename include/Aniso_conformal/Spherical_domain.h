@@ -26,21 +26,16 @@ namespace Aniso_conformal {
  * the unit sphere, for closed surfaces of genus 0: stage 3 is `spherical_embedding()` (a planar
  * discrete conformal map of the punctured surface, inverse stereographic projection, Moebius
  * centring), stages 4 and 5 run in `Spherical_domain_traits`. Reports the angle distortion of the map.
+ * `fits()` a closed surface of genus 0; `check_number_of_vertices()` throws `Invalid_input` below 4 (the
+ * tetrahedron).
  *
  * \cgalModels `ParametricDomain`
  */
-struct Spherical_domain : internal::Domain_policy_base<Spherical_embedding, Spherical_domain_traits> {
+struct Spherical_domain : internal::Closed_domain_policy_base<Spherical_embedding, Spherical_domain_traits, 0, 0> {
   static constexpr Parametric_domain kind = Parametric_domain::SPHERE;  ///< its tag
 
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces of genus 0"; }
-  /// `true` for a closed surface of genus 0
-  static bool fits(const Input_surface& s) { return is_closed_of_genus(s, 0, 0); }
-  /// \throws Invalid_input below 4 vertices (the tetrahedron)
-  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
-  {
-    require_vertices(s, n, 4, "the tetrahedron");
-  }
   /// stage 3: `spherical_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)

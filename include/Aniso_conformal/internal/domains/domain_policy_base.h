@@ -8,12 +8,13 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 
 // What the models of ParametricDomain share: the types, the traits built from the background and the
-// embedding, the topology test of the closed domains, the refusal of too few vertices, and the hint for
-// inverted triangles on a closed surface.
+// embedding, the refusal of too few vertices, and the hint for inverted triangles on a closed surface;
+// for the closed domains also the topology test and the fewest vertices of the topology.
 
 namespace Aniso_conformal {
 namespace internal {
@@ -39,16 +40,37 @@ struct Domain_policy_base {
   }
 
 protected:
-  static bool is_closed_of_genus(const Input_surface& s, int least, int most)
-  {
-    return s.boundary_loops().empty() && s.genus() >= least && s.genus() <= most;
-  }
   // Invalid_input if `n` is below `least`, the smallest triangulation (`what`) of the surface's topology
   static void require_vertices(const Input_surface& s, std::size_t n, std::size_t least, const std::string& what)
   {
     if(n < least)
       throw Invalid_input("remesh(): " + s.topology_description() + " needs at least " + std::to_string(least) +
                           " output vertices (" + what + "), " + std::to_string(n) + " were requested");
+  }
+};
+
+// The fewest vertices of a triangulation of the closed surface of genus `g >= 0` (Ringel and Jungerman:
+// Heawood's bound `ceil((7 + sqrt(1 + 48 g)) / 2)`, except 10 for genus 2): 4 (the tetrahedron) for the
+// sphere, 7 (Moebius' torus) for the torus.
+inline std::size_t minimum_vertices_of_closed_surface(int g)
+{
+  if(g == 2) return 10;
+  return std::size_t(std::ceil((7 + std::sqrt(1.0 + 48.0 * g)) / 2 - 1e-9));
+}
+
+// The models of ParametricDomain for closed surfaces of genus `least_genus` to `most_genus`: their topology
+// test and their refusal of fewer output vertices than the smallest triangulation of the input's genus.
+template <typename Embedding_, typename Traits_, int least_genus, int most_genus>
+struct Closed_domain_policy_base : Domain_policy_base<Embedding_, Traits_> {
+  // `true` for a closed surface of genus `least_genus` to `most_genus`
+  static bool fits(const Input_surface& s) { return s.boundary_loops().empty() && s.genus() >= least_genus && s.genus() <= most_genus; }
+  // Invalid_input below minimum_vertices_of_closed_surface(genus)
+  static void check_number_of_vertices(const Input_surface& s, std::size_t n)
+  {
+    const int g = s.genus();
+    Domain_policy_base<Embedding_, Traits_>::require_vertices(
+        s, n, minimum_vertices_of_closed_surface(g),
+        g == 0 ? "the tetrahedron" : g == 1 ? "the smallest torus triangulation" : "the smallest triangulation of that genus");
   }
 };
 
