@@ -187,6 +187,71 @@ BOOST_AUTO_TEST_CASE(delaunay_of_points_on_the_tetrahedron_is_a_closed_triangula
     }
 }
 
+// Sites exactly at background vertices (fixed sites: the input's corners, the cones of negative curvature
+// kept as output vertices) become those vertices; a site a hair away from one makes needle-like triangles
+// whose flips must keep every angle sum (they did not, with the law of cosines: 0.14 rad on CGAL's femur,
+// and hundreds of flat vertices were left unremoved)
+BOOST_AUTO_TEST_CASE(delaunay_on_a_cone_surface_with_sites_at_and_next_to_vertices)
+{
+  const Tetrahedron t = make_tetrahedron(true);
+  std::vector<Eigen::Vector3d> where;
+  auto points = random_points(t, 200, 11u, where);
+  // a point at every cone (vertices 0 to 3) and at one flat midpoint (vertex 4), each given as a corner of
+  // the first face at it
+  auto first_face_at = [&](int v, int& corner) {
+    for(std::size_t f = 0; f < t.faces.size(); ++f)
+      for(int k = 0; k < 3; ++k)
+        if(t.faces[f][std::size_t(k)] == v) {
+          corner = k;
+          return int(f);
+        }
+    return -1;
+  };
+  for(int v = 0; v < 5; ++v) {
+    int k = 0;
+    const int f = first_face_at(v, k);
+    points[std::size_t(v)].face = f;
+    points[std::size_t(v)].x = t.layout[std::size_t(f)][std::size_t(k)];
+    where[std::size_t(v)] = t.position[std::size_t(v)];
+  }
+  // two points a hair (1e-9 of the edges) inside faces at two other midpoints (vertices 5 and 6)
+  for(int j = 0; j < 2; ++j) {
+    int k = 0;
+    const int f = first_face_at(5 + j, k);
+    const auto& L = t.layout[std::size_t(f)];
+    const std::size_t i = std::size_t(10 + j), k0 = std::size_t(k), k1 = std::size_t((k + 1) % 3), k2 = std::size_t((k + 2) % 3);
+    points[i].face = f;
+    points[i].x = L[k0] + 1e-9 * ((L[k1] - L[k0]) + (L[k2] - L[k0]));
+    where[i] = t.position[std::size_t(5 + j)];
+  }
+  AC::internal::Cone_surface_delaunay delaunay(t.faces, t.twin, t.layout, t.is_cone);
+  const std::vector<std::array<std::size_t, 3>> tris = delaunay.triangulate(points);
+  BOOST_TEST(tris.size() == 2 * points.size() - 4);
+  BOOST_TEST(closed_manifold_genus(points.size(), tris) == 0);
+  BOOST_TEST(delaunay.statistics().collapsed == 0u);  // every cone is a point
+  BOOST_TEST(delaunay.statistics().removed == 5u);    // the other five midpoints, each flat: none left over
+  double volume = 0;
+  for(const auto& f : tris) volume += where[f[0]].dot(where[f[1]].cross(where[f[2]])) / 6;
+  BOOST_TEST(volume > 0);
+}
+
+// the angle of a triangle from its sides, also for needles and degenerate sides
+BOOST_AUTO_TEST_CASE(triangle_angle_from_sides_is_accurate_for_needles)
+{
+  const double pi = 3.14159265358979323846;
+  BOOST_TEST(std::abs(AC::internal::triangle_angle(1, 1, 1) - pi / 3) < 1e-15);
+  BOOST_TEST(std::abs(AC::internal::triangle_angle(3, 4, 5) - pi / 2) < 1e-15);
+  BOOST_TEST(std::abs(AC::internal::triangle_angle(4, 3, 5) - pi / 2) < 1e-15);
+  // a needle: sides 1, 1 and 1e-9 (the law of cosines gives acos(1 - 5e-19) = 0)
+  BOOST_TEST(std::abs(AC::internal::triangle_angle(1, 1, 1e-9) / (2 * std::asin(0.5e-9)) - 1) < 1e-12);
+  // nearly flat the other way: sides 1, 1 and 2 - 1e-12, the angle opposite the long side near pi
+  const double c = 2 - 1e-12;
+  BOOST_TEST(std::abs(AC::internal::triangle_angle(1, 1, c) - 2 * std::asin(c / 2)) < 1e-9);
+  BOOST_TEST(AC::internal::triangle_angle(1, 1, 3) == pi);  // c > a + b
+  BOOST_TEST(AC::internal::triangle_angle(3, 1, 1) == 0);   // c < a - b
+  BOOST_TEST(AC::internal::triangle_angle(1, 3, 1) == 0);
+}
+
 BOOST_AUTO_TEST_CASE(delaunay_on_a_cone_surface_refuses_what_it_cannot_triangulate)
 {
   const Tetrahedron t = make_tetrahedron(false);

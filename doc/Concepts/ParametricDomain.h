@@ -24,6 +24,9 @@
  * - for a closed domain, `corner_site()`: the site of a vertex of the triangulation in the domain, read from
  *   the embedding; the pipeline makes each corner of the input's feature graph (`detect_features()`) a
  *   fixed site there, which the dual maps back exactly onto the corner;
+ * - for a closed domain, `vertices_kept()`: vertices of the triangulation that the domain itself needs as
+ *   output vertices (fixed sites, like the corners): the cone domain's cones of negative curvature; none
+ *   in the other domains;
  * - `diagnostics()`: what the domain measured, for `Remeshing_result::domain_diagnostics` (called after
  *   the CVT and the dual, so that the traits can report what they did);
  * - `inverted_triangles_hint()`: the most likely reason, on this domain, for an inverted output triangle
@@ -82,6 +85,10 @@ public:
    * image; in a periodic domain the image of that face's corner, a point standing for its class)
    */
   static Traits::Point corner_site(const Embedding& embedding, int face, int corner, int v);
+  /// closed domains only: the vertices of the triangulation that must be output vertices for the domain's
+  /// sake (fixed sites at `corner_site()`), the most needed first (the pipeline keeps at most an eighth of
+  /// the output vertices this way; the others are left to the dual)
+  static std::vector<std::size_t> vertices_kept(const Embedding& embedding);
   /// the domain's own figures (scalars, vectors, matrices) and a one-line summary in words
   static Aniso_conformal::Domain_diagnostics diagnostics(const Embedding& embedding, const Traits& traits);
   /// the likely reason for an inverted output triangle on this domain, in words

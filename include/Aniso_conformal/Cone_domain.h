@@ -62,6 +62,24 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
   {
     return emb.corner_uv[std::size_t(face)][std::size_t(corner)];
   }
+  /*!
+   * the cones of negative curvature (angle above `2 pi`), each kept as an output vertex (a fixed site at
+   * the cone): the Delaunay triangulation of free sites around such a cone joins sites over its several
+   * sheets (a cone of 629 degrees on CGAL's femur, a genus-2 bone) and cannot be merged into one site; a
+   * vertex there, of degree about angle / 60 degrees, is what a mesh of a saddle-like cone needs. The
+   * widest first; the cones of positive curvature are merged into their nearest site by the dual
+   * (`Cone_domain_traits`).
+   */
+  static std::vector<std::size_t> vertices_kept(const Embedding& emb)
+  {
+    std::vector<std::pair<double, std::size_t>> negative;
+    for(std::size_t i = 0; i < emb.cones.size(); ++i)
+      if(emb.cone_angles[i] > 2 * 3.14159265358979323846 * (1 + 1e-9)) negative.emplace_back(-emb.cone_angles[i], std::size_t(emb.cones[i]));
+    std::sort(negative.begin(), negative.end());  // the widest first
+    std::vector<std::size_t> kept;
+    for(const auto& c : negative) kept.push_back(c.second);
+    return kept;
+  }
   /// the cones, their angles, the area distortion and the atlas
   static Domain_diagnostics diagnostics(const Embedding& emb, const Traits& traits)
   {
@@ -74,6 +92,9 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
       hi = *std::max_element(emb.cone_angles.begin(), emb.cone_angles.end()) * deg;
     }
     d.add("cone_angle_range", {lo, hi}, 2, "smallest and largest cone angle (degrees)");
+    d.add("negative_cones", double(vertices_kept(emb).size()),
+          "cones of angle above 360 degrees, each a fixed site (an output vertex) unless a corner or a wider one lies within half an edge length",
+          true);
     std::vector<double> table;
     for(std::size_t i = 0; i < emb.cones.size(); ++i) {
       const Eigen::Vector3d& x = traits.background().position(emb.cones[i]);

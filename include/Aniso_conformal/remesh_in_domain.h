@@ -155,6 +155,9 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   if(patches)  // the loops' corners are placed with their sites
     corners.erase(std::remove_if(corners.begin(), corners.end(), [&](std::size_t v) { return itri.seam(int(v)) >= 0; }), corners.end());
   auto fixed = corner_sites<Domain>(emb, itri, corners);
+  // the domain's own fixed sites (the cone domain's cones of negative curvature), after the corners
+  const std::vector<std::size_t> kept = kept_vertices_apart(Domain::vertices_kept(emb), corners, itri, result.refinement.output_edge_length, n / 8);
+  for(std::size_t v : kept) fixed.push_back(seam_site<Domain>(emb, itri, int(v)));
   // the crease sites after the corners, at equal metric arc length along each curve (crease_sites.h)
   Crease_sites crease_sites;
   std::vector<std::vector<std::size_t>> crease_chain;  // per curve, its sites as output vertices, with its fixed corners
@@ -167,6 +170,7 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
       taken[corners[j]] = 1;
       corner_index[corners[j]] = j;
     }
+    for(std::size_t v : kept) taken[v] = 1;
     crease_sites = place_crease_sites(itri, features, crease_chains(itri, surface, features), h, std::move(taken),
                                       n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), corners);
     for(std::size_t c = 0; c < features.curves.size(); ++c) {

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
+#include <utility>
 
 namespace Aniso_conformal {
 namespace internal {
@@ -23,6 +25,24 @@ inline bool flat_triangle_angles(const std::array<double, 3>& l, std::array<doub
       return true;
     }
   return false;
+}
+
+// The angle (radians) opposite side `c` of a triangle with sides `a`, `b`, `c`, accurate to a few ulps
+// also for needle-like triangles, where the law of cosines loses half the digits (Kahan 2014,
+// "Miscalculating area and angles of a needle-like triangle", section 3: the half-angle formula with the
+// differences of sides formed before any rounding error). Sides that violate the triangle inequality give
+// 0 (c <= |a - b|) or pi (c >= a + b), as the convex extension of flat_triangle_angles().
+inline double triangle_angle(double a, double b, double c)
+{
+  if(a < b) std::swap(a, b);
+  double mu;
+  if(b >= c && c >= 0) mu = c - (a - b);
+  else if(c > b && b >= 0) mu = b - (a - c);
+  else return 0;
+  const double num = ((a - b) + c) * mu, den = (a + (b + c)) * ((a - c) + b);
+  if(!(num > 0)) return den > 0 ? 0.0 : 3.14159265358979323846;
+  if(!(den > 0)) return 3.14159265358979323846;
+  return 2 * std::atan(std::sqrt(num / den));
 }
 
 // The barycentric coordinates of `x` in the planar triangle `p` (its corners in order; affine

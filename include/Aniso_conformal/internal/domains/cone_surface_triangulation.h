@@ -159,12 +159,11 @@ protected:
     }
   }
 
-  // the angle of h's face opposite h (its corner at prev(h)'s tail)
+  // the angle of h's face opposite h (its corner at prev(h)'s tail), accurate also in the needle-like
+  // triangles that a site inserted next to a vertex or an edge makes
   double opposite_angle(int h) const
   {
-    const double a = m_len[std::size_t(h)], b = m_len[std::size_t(next(h))], c = m_len[std::size_t(prev(h))];
-    const double q = (b * b + c * c - a * a) / (2 * b * c);
-    return std::acos(std::max(-1.0, std::min(1.0, q)));
+    return triangle_angle(m_len[std::size_t(next(h))], m_len[std::size_t(prev(h))], m_len[std::size_t(h)]);
   }
 
   // 1: each point split into the face of its background face's pieces that holds it
@@ -193,7 +192,20 @@ protected:
           throw Convergence_failure("dual mesh: site " + std::to_string(i) + " coincides with site " +
                                         std::to_string(std::size_t(m_tail[std::size_t(3 * best + k)]) - m_nb) + " on the cone surface",
                                     0);
-      // a point on an edge or a corner goes a hair inside (the combinatorics do not depend on it)
+      // a point at a vertex of the background (a fixed site: a corner of the input, a cone kept as an output
+      // vertex) becomes that vertex, which keeps its angle sum: inserted a hair inside a face next to it, it
+      // would leave the vertex to be merged into it, which a wide cone's link does not allow
+      bool snapped = false;
+      for(int k = 0; k < 3 && !snapped; ++k) {
+        const int corner = m_tail[std::size_t(3 * best + k)];
+        if(std::size_t(corner) < m_nb &&
+           (xy[std::size_t(3 * best + k)] - points[i].x).norm() <= 1e-12 * (xy[std::size_t(3 * best + (k + 1) % 3)] - xy[std::size_t(3 * best + k)]).norm()) {
+          rename_vertex(corner, int(m_nb + i));
+          snapped = true;
+        }
+      }
+      if(snapped) continue;
+      // a point on an edge or near a corner goes a hair inside (the combinatorics do not depend on it)
       const double eps = 1e-7;
       Eigen::Vector3d b = best_b.cwiseMax(eps);
       b /= b.sum();
@@ -248,12 +260,13 @@ protected:
       if(y / 3 == h / 3 || y / 3 == t / 3) return false;
     }
     const int a = m_tail[std::size_t(h)], b = m_tail[std::size_t(t)], c = m_tail[std::size_t(hp)], d = m_tail[std::size_t(tp)];
-    // lay out a = 0, b = (L, 0), c above, d below
+    // lay out a = 0, b = (L, 0), c above, d below, by the angles at a (the law of cosines would place c
+    // and d with half the digits lost in the needle-like triangles next to an inserted site, and the flip
+    // would change the angle sums at a and b: up to 0.14 rad on CGAL's femur)
     const double L = m_len[std::size_t(h)];
     const double ac = m_len[std::size_t(hp)], bc = m_len[std::size_t(hn)], ad = m_len[std::size_t(tn)], bd = m_len[std::size_t(tp)];
-    const double cx = (ac * ac - bc * bc + L * L) / (2 * L), cy = std::sqrt(std::max(0.0, ac * ac - cx * cx));
-    const double dx = (ad * ad - bd * bd + L * L) / (2 * L), dy = -std::sqrt(std::max(0.0, ad * ad - dx * dx));
-    const double cd = geometric ? std::hypot(cx - dx, cy - dy) : 0.0;
+    const double at_a_in_abc = triangle_angle(L, ac, bc), at_a_in_abd = triangle_angle(L, ad, bd);
+    const double cd = geometric ? std::hypot(ac * std::cos(at_a_in_abc) - ad * std::cos(at_a_in_abd), ac * std::sin(at_a_in_abc) + ad * std::sin(at_a_in_abd)) : 0.0;
     if(geometric && (!(cd > 0) || !std::isfinite(cd))) return false;
     std::vector<New_halfedge> nh(6);
     nh[0] = {c, ac, hp, -1};
@@ -389,6 +402,18 @@ protected:
     replace(faces, nh);
     m_out[std::size_t(v)] = -1;
     return true;
+  }
+
+  // Vertex `from` becomes vertex `to` (a number no vertex has yet): every halfedge leaving it
+  void rename_vertex(int from, int to)
+  {
+    std::vector<int> spokes = spokes_of(from);
+    if(spokes.empty())  // not a simple cycle of spokes: every halfedge looked at
+      for(std::size_t h = 0; h < m_tail.size(); ++h)
+        if(m_alive[h / 3] && m_tail[h] == from) spokes.push_back(int(h));
+    for(int h : spokes) m_tail[std::size_t(h)] = to;
+    m_out[std::size_t(to)] = m_out[std::size_t(from)];
+    m_out[std::size_t(from)] = -1;
   }
 
   // the halfedges leaving v, counterclockwise (empty if v is not a vertex any more or its star is not a

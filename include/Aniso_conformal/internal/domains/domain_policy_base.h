@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 // What the models of ParametricDomain share: the types, the traits built from the background and the
 // embedding, the refusal of too few vertices, and the hint for inverted triangles on a closed surface;
@@ -32,6 +33,8 @@ struct Domain_policy_base {
   // `true` if the default surface optimisation (Surface_optimization::REPAIR) runs always in this domain,
   // as Surface_optimization::ALWAYS (the cone domain, whose Voronoi cells next to cones are approximate)
   static constexpr bool optimizes_on_the_surface_by_default = false;
+  // the vertices of the background the domain needs as output vertices (fixed sites): none
+  static std::vector<std::size_t> vertices_kept(const Embedding_&) { return {}; }
   // the likely reason for an inverted output triangle on a closed surface
   static const char* inverted_triangles_hint()
   {

@@ -123,6 +123,25 @@ inline std::vector<std::size_t> corners_to_fix(const Feature_graph& g, const Int
   return fixed;
 }
 
+// The vertices of the background (any, not only the input's) that a domain keeps as output vertices
+// (ParametricDomain::vertices_kept(): the cone domain's cones of negative curvature) and that get a fixed
+// site (seam_site()): each of `kept` in its order, unless one of the `corners` or a vertex kept before lies
+// within half of the output edge length `h` of it (in the metric; that site serves it, as in
+// corners_to_fix()); at most `most` of them.
+inline std::vector<std::size_t> kept_vertices_apart(const std::vector<std::size_t>& kept, const std::vector<std::size_t>& corners,
+                                                    const Intrinsic_triangulation& itri, double h, std::size_t most)
+{
+  std::vector<std::size_t> out;
+  for(std::size_t v : kept) {
+    if(out.size() >= most) break;
+    auto near = [&](std::size_t w) {
+      return w == v || (0.5 * (itri.Q(int(v)) + itri.Q(int(w))) * (itri.position(int(w)) - itri.position(int(v)))).norm() < 0.5 * h;
+    };
+    if(std::none_of(corners.begin(), corners.end(), near) && std::none_of(out.begin(), out.end(), near)) out.push_back(v);
+  }
+  return out;
+}
+
 // Invalid_input if the `corners` of the input (kept as output vertices) outnumber the `n` requested
 inline void check_vertices_for_corners(std::size_t corners, std::size_t n, double feature_angle)
 {
