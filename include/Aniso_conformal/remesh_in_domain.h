@@ -249,7 +249,7 @@ inline std::vector<std::size_t> plane_corners_to_fix(const Feature_graph& g, Int
     }
     bool apart = true;
     for(int c : boundary_corners)
-      if(c != w && (0.5 * (itri.Q(w) + itri.Q(c)) * (itri.position(c) - itri.position(w))).norm() < 0.5 * h) apart = false;
+      if(c != w && closer_than_half_an_edge(itri, w, c, h)) apart = false;
     if(!apart) continue;
     kept.push_back(v);
     if(!itri.is_corner(w)) {

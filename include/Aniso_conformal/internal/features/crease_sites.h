@@ -12,6 +12,7 @@
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/internal/features/edge_recovery_by_flips.h>
+#include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/optimize/triangle_orientation.h>
 #include <Aniso_conformal/refine_background.h>
 
@@ -146,7 +147,7 @@ inline Crease_sites place_crease_sites(const Intrinsic_triangulation& itri, cons
   std::vector<int> placed(fixed.begin(), fixed.end());
   auto apart = [&](int v) {
     for(int w : placed)
-      if((0.5 * (itri.Q(v) + itri.Q(w)) * (itri.position(w) - itri.position(v))).norm() < 0.5 * h) return false;
+      if(closer_than_half_an_edge(itri, v, w, h)) return false;
     return true;
   };
   const std::size_t nc = g.curves.size();

@@ -93,6 +93,14 @@ Corner_site<typename Domain::Traits::Point> seam_site(const typename Domain::Emb
   return c;
 }
 
+// `true` if background vertices v and w are closer than half the output edge length `h` in the metric
+// (the straight segment between them, measured with the mean of their two square roots Q, as
+// refine_background() measures): two fixed sites that close make a sliver
+inline bool closer_than_half_an_edge(const Intrinsic_triangulation& itri, int v, int w, double h)
+{
+  return (0.5 * (itri.Q(v) + itri.Q(w)) * (itri.position(w) - itri.position(v))).norm() < 0.5 * h;
+}
+
 // The corners to fix: every corner, except one closer than half the output's edge length `h` (in the
 // metric, from the mean of the two square roots, as refine_background() measures) to a corner fixed before
 // it: two fixed sites that close make a sliver or an inverted output triangle (the short crease fragments
@@ -113,7 +121,7 @@ inline std::vector<std::size_t> corners_to_fix(const Feature_graph& g, const Int
   for(std::size_t v : order) {
     bool apart = true;
     for(std::size_t w : fixed)
-      if((0.5 * (itri.Q(int(v)) + itri.Q(int(w))) * (itri.position(int(w)) - itri.position(int(v)))).norm() < 0.5 * h) {
+      if(closer_than_half_an_edge(itri, int(v), int(w), h)) {
         apart = false;
         break;
       }
@@ -135,7 +143,7 @@ inline std::vector<std::size_t> kept_vertices_apart(const std::vector<std::size_
   for(std::size_t v : kept) {
     if(out.size() >= most) break;
     auto near = [&](std::size_t w) {
-      return w == v || (0.5 * (itri.Q(int(v)) + itri.Q(int(w))) * (itri.position(int(w)) - itri.position(int(v)))).norm() < 0.5 * h;
+      return w == v || closer_than_half_an_edge(itri, int(v), int(w), h);
     };
     if(std::none_of(corners.begin(), corners.end(), near) && std::none_of(out.begin(), out.end(), near)) out.push_back(v);
   }
