@@ -291,7 +291,8 @@ inline void declare_options(CLI::App& app, Options& o)
     ->group(re);
   app.add_option("--surface-optimization", o.surface_optimization,
                  "final flips and vertex moves of the output on the input, in the metric: off | repair (only when the "
-                 "dual mesh has inverted triangles, to repair them, or follows creases; the default; always in the cone domain) | always")
+                 "dual mesh has inverted triangles, to repair them, a triangle with an angle below 30 degrees, or follows creases; "
+                 "the default; always in the cone domain) | always")
     ->type_name("WHEN")
     ->check(CLI::IsMember({"off", "repair", "always"}))
     ->group(re);

@@ -65,20 +65,20 @@ struct Surface_optimization_report {
  *   the plain mean of its neighbours; a vertex of an inverted triangle also tries half way to that mean
  *   and 1/2 and 1/4 of the way to each neighbour), projected back onto the input with its AABB tree
  *   (`Input_surface::project()`, CGAL's `AABB_tree`);
- * - on an output with fixed vertices inside (the input's corners and crease sites, issue 15; not the
- *   boundary's), one pass of *max-min angle relocation* (optimisation-based smoothing, Freitag and
+ * - one pass of *max-min angle relocation* (optimisation-based smoothing, Freitag and
  *   Plassmann 2000): each free vertex whose one-ring has an angle below 30 degrees in the metric tries the
  *   apex of the triangle equilateral on the edge opposite it in its worst triangles, in space and in the
  *   metric (the triangle's mean square root `Q`; the same point for an isotropic metric), and 1/2, 1/4,
- *   1/8 and 1/16 of the way to each, projected onto the input, and takes the target that raises the ring's smallest angle
+ *   1/8 and 1/16 of the way to each, and steps of 1/2 to 1/32 of its mean edge length along the steepest
+ *   ascent of the ring's smallest angle (central differences in its tangent plane: what turns a vertex
+ *   around a tip of the surface, where the apexes ask for angles the tip does not have; CGAL's camel
+ *   through cones at 3000 vertices, theta_min 19.6 -> 29.6), projected onto the input, and takes the target that raises the ring's smallest angle
  *   most without an inverted triangle, a lower G_min or more triangles below 30 degrees (a free vertex
  *   across a short edge between two fixed sites is otherwise left thin: CGAL's three_peaks at 2000
- *   vertices, theta_min 20.6 -> 30.6 degrees). An output without fixed vertices inside is optimised
- *   exactly as without this pass, unless `angle_pass_everywhere` (what `Surface_optimization::ALWAYS`
- *   asks for): then every output gets it (the image metric of paper eq. 9, whose thin triangles sit
+ *   vertices, theta_min 20.6 -> 30.6 degrees; the image metric of paper eq. 9, whose thin triangles sit
  *   where the metric changes by 40-100 % between a triangle's corners, across colour edges: chelsea at
  *   s = 0.1, 3000 vertices, theta_min 24.1 -> 29.4 degrees and %<30 0.19 -> 0.02 after the other
- *   passes, G_avg unchanged to 1e-4; issue 17 item 4).
+ *   passes, G_avg unchanged to 1e-4; issue 17 item 4; CGAL's bear at 2000, isotropic: 17.1 -> 30.4).
  *
  * Then, on an output with fixed vertices inside and no inverted triangle, *crowded vertices* are moved
  * (internal/optimize/crowded_vertices.h): next to the fixed sites the CVT can leave a gap that no move of
@@ -115,7 +115,7 @@ struct Surface_optimization_report {
  * G (the quality of `compute_mesh_quality()`, computed the same way); the max-min angle moves above
  * instead raise theta_min with G_min and %<30 no worse, and may lower G_avg a little (at 2000 vertices
  * three_peaks by 1e-4, blob by 5e-3). So on an output without inverted triangles the stage never makes the report's G_min, theta_min
- * or %<30 worse, nor, without fixed vertices inside, its G_avg or theta_avg (up to rounding in the
+ * or %<30 worse, nor, without a triangle below 30 degrees, its G_avg or theta_avg (up to rounding in the
  * report's sums); on one with inverted triangles it repairs them where a flip or a move can, and a repair
  * may lower those figures. A round that changes nothing ends the first phase. (The second phase's
  * acceptance is the looser one above.)
@@ -153,8 +153,8 @@ struct Surface_optimization_report {
  *        modified in place
  * \param max_rounds bound on the rounds (0: nothing is done)
  * \param vis the visitor: told of each round, may cancel
- * \param angle_pass_everywhere the max-min angle pass on every output (default: only on one with fixed
- *        vertices inside), and the second phase
+ * \param angle_pass_everywhere the second phase, and boundary vertices sliding along straight pieces of
+ *        the input's boundary (`Surface_optimization::ALWAYS`; the max-min angle pass runs either way)
  * \returns what was done, with the quality before and after
  * \throws Internal_error if `mesh` is inconsistent (a face index out of range, fewer surface points than
  *         vertices); a `mesh` whose triangles are not a 2-manifold is left unchanged (`ran` is `false`)

@@ -47,9 +47,8 @@ public:
   typedef Mesh::Halfedge_index H;
   typedef Mesh::Face_index F;
 
-  // `angle_pass_everywhere` (Surface_optimization::ALWAYS): angle_pass() runs on every output, not only on
-  // one with fixed vertices inside, and boundary vertices on a straight piece of the input's boundary may
-  // slide along it (slides())
+  // `angle_pass_everywhere` (Surface_optimization::ALWAYS): boundary vertices on a straight piece of the
+  // input's boundary may slide along it (slides()); angle_pass() runs on every output either way
   Surface_optimizer(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out,
                     bool angle_pass_everywhere = false)
     : m_surface(surface), m_metric(metric), m_out(out), m_side(planar_side(surface)), m_angle_pass_everywhere(angle_pass_everywhere)
@@ -213,7 +212,7 @@ public:
 
   // one pass of max-min angle relocation (optimisation-based smoothing, Freitag and Plassmann 2000: a
   // vertex moves where the smallest angle of its one-ring grows) of every free vertex whose one-ring has
-  // an angle below 30 degrees in the metric, on an output with fixed vertices inside (corners and crease
+  // an angle below 30 degrees in the metric (corners and crease
   // sites: a fixed site the CVT could not move leaves its free neighbours where its Voronoi cell ended,
   // and a short fixed edge, two corners closer than the output edge length, gets a free vertex at the
   // usual distance across it, a thin triangle the centroid moves of relocation_pass() do not cure: CGAL's
@@ -221,21 +220,17 @@ public:
   // ring whose smallest angle is the ring's, the apex of the equilateral triangle on (a, b) on v's side
   // and the points 1/2, 1/4, 1/8 and 1/16 of the way there, both the triangle equilateral in space and
   // the one equilateral in the metric (the mean Q of v, a, b; metric_equilateral_apex()), projected onto
-  // the input (two obtuse triangles on one edge, the torus at stretch 30, need the short steps). A move is accepted when it
+  // the input (two obtuse triangles on one edge, the torus at stretch 30, need the short steps), and the
+  // steps along the steepest ascent of the ring's smallest angle (ascent_targets()). A move is accepted when it
   // makes no triangle of the ring inverted that was not, raises the ring's smallest angle and lowers
   // neither its G_min nor its count below 30 degrees (G_avg may drop a little: the smallest angle is what
-  // this pass is for). Returns the number of vertices moved; 0 on an output without fixed vertices inside,
-  // unless the optimiser was built with `angle_pass_everywhere` (Surface_optimization::ALWAYS: the image
-  // metric's thin triangles across colour edges, issue 17 item 4; chelsea at 3000 vertices, theta_min
-  // 24.1 -> 29.4 degrees after the other passes).
+  // this pass is for). Returns the number of vertices moved. It ran only next to fixed vertices inside
+  // and with Surface_optimization::ALWAYS (the image metric's thin triangles across colour edges, issue
+  // 17 item 4; chelsea at 3000 vertices, theta_min 24.1 -> 29.4 degrees after the other passes) until
+  // it was found to lift the thin triangles of smooth outputs as well (bear at 2000: 17.1 -> 30.4).
   std::size_t angle_pass()
   {
     static constexpr double angle_pass_steps[] = {1.0, 0.5, 0.25, 0.125, 0.0625};  // of the way to each apex
-    if(!m_angle_pass_checked) {
-      m_angle_pass = m_angle_pass_everywhere || has_interior_fixed_vertices();
-      m_angle_pass_checked = true;
-    }
-    if(!m_angle_pass) return 0;
     return for_each_movable_vertex([&](V v, const std::vector<F>& ring, const Local_score& before) {
       const std::size_t i = v.idx();
       if(before.inverted > 0 || !(before.angle_min < 30)) return false;
@@ -260,6 +255,7 @@ public:
       }
       const Vertex_state old = state(i);
       const Eigen::Vector3d old_normal = interpolated_normal(old.sp);
+      ascent_targets(v, ring, old_normal, targets);
       Local_score best = before;
       Vertex_state best_state = old;
       for(const Eigen::Vector3d& y : targets) {
@@ -273,6 +269,45 @@ public:
       restore(i, best_state);
       return best.angle_min > before.angle_min;
     });
+  }
+
+  // Targets of angle_pass() along the steepest ascent of the smallest angle of `v`'s one-ring `ring` (the
+  // gradient of Freitag and Plassmann 2000, of the one angle that is smallest): the gradient by central
+  // differences in the plane normal to `normal`, steps 1/2 to 1/32 of the mean length of v's edges, into
+  // `targets`. What the apexes of angle_pass() miss: a vertex next to a tip of the surface (a horn's end,
+  // where one vertex has three or four triangles of apex angles summing to far less than 2 pi) that
+  // leaves one of them thin, as on CGAL's triceratops through cones (14.8 degrees where the three apex
+  // angles at the tip could each be 28): the apex of the equilateral triangle asks the tip for 60 degrees
+  // it does not have, while turning the vertex around the tip evens the apex angles out. v is put back.
+  void ascent_targets(V v, const std::vector<F>& ring, const Eigen::Vector3d& normal, std::vector<Eigen::Vector3d>& targets)
+  {
+    const std::size_t i = v.idx();
+    const Eigen::Vector3d p = P(v);
+    double length = 0;
+    std::size_t edges = 0;
+    for(V u : CGAL::vertices_around_target(m_mesh.halfedge(v), m_mesh)) length += (P(u) - p).norm(), ++edges;
+    const Eigen::Vector3d n = normal.normalized();
+    if(edges == 0 || !(length > 0) || !n.allFinite()) return;
+    length /= double(edges);
+    const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    const Vertex_state old = state(i);
+    const double delta = 1e-4 * length;
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+    for(const Eigen::Vector3d& t : {t1, t2}) {
+      double side[2];
+      for(int k = 0; k < 2; ++k) {
+        if(!try_move(v, p + (k == 0 ? delta : -delta) * t, normal, false)) {
+          restore(i, old);
+          return;
+        }
+        side[k] = ring_score(ring).angle_min;
+        restore(i, old);
+      }
+      gradient += (side[0] - side[1]) / (2 * delta) * t;
+    }
+    if(!(gradient.norm() > 0) || !gradient.allFinite()) return;
+    const Eigen::Vector3d d = gradient.normalized();
+    for(double step : {0.5, 0.25, 0.125, 0.0625, 0.03125}) targets.push_back(p + step * length * d);
   }
 
   // writes the faces back into the output (positions and surface points are updated in place); the faces
@@ -512,9 +547,8 @@ private:
   std::size_t m_sliding = 0;
   std::vector<std::array<std::size_t, 2>> m_input_border;  // the input's boundary edges, sorted
   std::vector<std::array<std::size_t, 2>> m_kept;  // Remeshed_surface::kept_edges, sorted: never flipped
-  bool m_angle_pass_everywhere;  // angle_pass() on every output
+  bool m_angle_pass_everywhere;  // Surface_optimization::ALWAYS: sliding boundary vertices
   bool m_flipped = false;
-  bool m_angle_pass = false, m_angle_pass_checked = false;  // angle_pass(): everywhere, or fixed vertices inside
 };
 
 } // namespace internal
