@@ -202,7 +202,7 @@ public:
   }
 
   // whether the mesh has fixed vertices inside (corners and crease sites of the input's features, issue
-  // 15): only then does angle_pass() do anything, so an output without them is optimised as before
+  // 15): only then are crowded vertices moved (optimize_surface_mesh())
   bool has_interior_fixed_vertices() const
   {
     for(V v : m_mesh.vertices())
@@ -212,8 +212,8 @@ public:
 
   // one pass of max-min angle relocation (optimisation-based smoothing, Freitag and Plassmann 2000: a
   // vertex moves where the smallest angle of its one-ring grows) of every free vertex whose one-ring has
-  // an angle below 30 degrees in the metric (corners and crease
-  // sites: a fixed site the CVT could not move leaves its free neighbours where its Voronoi cell ended,
+  // an angle below 30 degrees in the metric (next to fixed vertices inside, corners and crease sites,
+  // such angles are common: a fixed site the CVT could not move leaves its free neighbours where its Voronoi cell ended,
   // and a short fixed edge, two corners closer than the output edge length, gets a free vertex at the
   // usual distance across it, a thin triangle the centroid moves of relocation_pass() do not cure: CGAL's
   // three_peaks at 2000 vertices, theta_min 20.6 degrees). Targets: for each triangle (v, a, b) of the

@@ -246,13 +246,21 @@ inline std::size_t count_inverted_triangles(const Input_surface& surface, const 
   return std::size_t(std::count(inverted.begin(), inverted.end(), 1));
 }
 
+// the square root of `metric` at each vertex of `out`, as compute_mesh_quality() takes them; serial: a
+// user's metric model need not be safe for concurrent calls (and this loop is short)
+template <typename AnisotropicMetric>
+std::vector<Eigen::Matrix3d> metric_square_roots_at(const AnisotropicMetric& metric, const Remeshed_surface& out)
+{
+  std::vector<Eigen::Matrix3d> Q(out.points.size());
+  for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = symmetric_sqrt(metric.tensor(out.surface_points[i]));
+  return Q;
+}
+
 // `true` if a triangle of `out` has an angle below 30 degrees in `metric` (as the quality report measures)
 template <typename AnisotropicMetric>
 bool has_angle_below_30_degrees(const AnisotropicMetric& metric, const Remeshed_surface& out, unsigned threads)
 {
-  std::vector<Eigen::Matrix3d> Q(out.points.size());
-  for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = symmetric_sqrt(metric.tensor(out.surface_points[i]));
-  return compute_mesh_quality(out.points, out.faces, Q, threads).theta_min < 30;
+  return compute_mesh_quality(out.points, out.faces, metric_square_roots_at(metric, out), threads).theta_min < 30;
 }
 
 // Stage 6 of 7, before the quality: the surface optimisation (optimize_surface_mesh()) when `mode` asks for
@@ -281,10 +289,7 @@ void measure_and_check_output(const Input_surface& surface, const AnisotropicMet
                               const char* hint, Visitor& vis, Remeshing_result& result, unsigned threads = 0)
 {
   Stage_timer t6(vis, Stage::QUALITY);
-  std::vector<Eigen::Matrix3d> Q(out.points.size());
-  // serial: a user's metric model need not be safe for concurrent calls (and this loop is short)
-  for(std::size_t i = 0; i < Q.size(); ++i) Q[i] = symmetric_sqrt(metric.tensor(out.surface_points[i]));
-  result.quality = compute_mesh_quality(out.points, out.faces, Q, threads);
+  result.quality = compute_mesh_quality(out.points, out.faces, metric_square_roots_at(metric, out), threads);
   result.inverted_triangles = count_inverted_triangles(surface, out, threads);
   if(result.inverted_triangles > 0)
     throw Convergence_failure("remesh(): the output has " + std::to_string(result.inverted_triangles) +
