@@ -10,8 +10,10 @@
 //   whose volume approaches the tetrahedron's; coinciding points and an open surface are refused;
 // - remesh() through the cones: a synthetic body with five long limbs and the bundled cow, which the
 //   sphere cannot take, remesh to exactly the vertex count asked, closed, of genus 0, with no inverted
-//   triangle and quality bounds; the automatic choice falls back to cones and says why; bad input is
-//   refused with Invalid_input.
+//   triangle and quality bounds; the automatic choice falls back to cones and says why;
+// - surfaces with holes through cones (their holes closed by patches, as on the sphere): a long open
+//   tube falls back to cones and keeps both loops, a short one goes there on request; a disk and bad
+//   input are refused with Invalid_input.
 
 #ifndef ANISO_CONFORMAL_TEST_UNITY
 #define BOOST_TEST_MODULE Aniso_conformal_cones
@@ -32,6 +34,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -325,9 +328,115 @@ BOOST_AUTO_TEST_CASE(the_cow_goes_to_cones_when_the_sphere_fails)
   BOOST_TEST(r.hausdorff_distance_relative < 0.03);  // measured 0.0186 (the limb body at 1500: 0.0054)
 }
 
+namespace {
+
+// An open tube of radius 1 and length `length` along z: `around` vertices on each ring, `rings` + 1 rings,
+// every other ring turned by half a step; genus 0 with two boundary loops (at z = 0 and z = length)
+AC::Input_surface make_open_tube(double length, int around, int rings)
+{
+  std::vector<Eigen::Vector3d> points;
+  for(int j = 0; j <= rings; ++j)
+    for(int i = 0; i < around; ++i) {
+      const double t = 2 * 3.14159265358979323846 * (i + 0.5 * (j % 2)) / around;
+      points.emplace_back(std::cos(t), std::sin(t), length * j / rings);
+    }
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j < rings; ++j)
+    for(int i = 0; i < around; ++i) {
+      const std::size_t a = std::size_t(j * around + i), b = std::size_t(j * around + (i + 1) % around);
+      const std::size_t c = a + std::size_t(around), d = b + std::size_t(around);
+      if(j % 2 == 0) {
+        faces.push_back({{a, b, c}});
+        faces.push_back({{b, d, c}});
+      } else {
+        faces.push_back({{a, b, d}});
+        faces.push_back({{a, d, c}});
+      }
+    }
+  return AC::Input_surface(std::move(points), std::move(faces));
+}
+
+// distance from p to the segment ab
+double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  const Eigen::Vector3d d = b - a;
+  const double t = std::max(0.0, std::min(1.0, (p - a).dot(d) / d.squaredNorm()));
+  return (p - (a + t * d)).norm();
+}
+
+// checks that the output keeps the tube's topology (genus 0, two loops) and that every output boundary
+// vertex lies on an input loop; returns the number of output boundary vertices
+std::size_t check_open_tube_output(const AC::Input_surface& tube, const AC::Remeshed_surface& out)
+{
+  std::vector<AC::Input_surface::Face> faces(out.faces.begin(), out.faces.end());
+  const AC::Input_surface s(out.points, std::move(faces));
+  BOOST_TEST(s.genus() == 0);
+  BOOST_TEST(s.boundary_loops().size() == 2u);
+  std::size_t on_loops = 0;
+  for(const auto& loop : s.boundary_loops())
+    for(std::size_t v : loop) {
+      double best = 1e300;
+      for(const auto& input_loop : tube.boundary_loops())
+        for(std::size_t k = 0; k < input_loop.size(); ++k)
+          best = std::min(best, segment_distance(s.points()[v], tube.points()[input_loop[k]],
+                                                 tube.points()[input_loop[(k + 1) % input_loop.size()]]));
+      BOOST_TEST(best <= 1e-9 * tube.bounding_box_diagonal());
+      ++on_loops;
+    }
+  return on_loops;
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(a_long_open_tube_goes_to_cones_with_both_loops)
+{
+  // 40 times longer than its radius: through the sphere, with its two ends closed by patches, the middle
+  // shrinks beyond double precision ("too small on the sphere"); the automatic choice then takes the
+  // cone domain, with the same patches (no CVT density in them) and loop sites
+  const AC::Input_surface tube = make_open_tube(40.0, 16, 160);
+  BOOST_TEST_REQUIRE(tube.boundary_loops().size() == 2u);
+  const std::size_t n = 400;
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh(tube, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+  BOOST_TEST_MESSAGE("open tube 40 -> " << n << ": " << r.domain_choice << "; " << r.domain_diagnostics.summary << "; G_avg "
+                                        << r.quality.G_avg << " theta_min " << r.quality.theta_min << " Hausdorff "
+                                        << r.hausdorff_distance_relative << ", " << r.total_seconds() << " s");
+  BOOST_TEST((r.domain == AC::Parametric_domain::CONE));
+  BOOST_TEST(r.domain_choice.rfind("cones, because the sphere failed: ", 0) == 0u);
+  BOOST_TEST(out.points.size() == n);
+  const std::size_t on_loops = check_open_tube_output(tube, out);
+  BOOST_TEST(on_loops == r.boundary_sites);
+  BOOST_TEST(on_loops >= 8u);  // measured 14 (7 a loop: the loop's length over the edge length)
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.patch_sites_moved == 0u);  // the patches hold no CVT density
+  BOOST_TEST(r.quality.G_avg >= 0.90);      // measured 0.948
+  BOOST_TEST(r.quality.theta_min >= 25.0);  // measured 36.1
+  BOOST_TEST(r.hausdorff_distance_relative < 0.01);
+}
+
+BOOST_AUTO_TEST_CASE(cone_domain_takes_holes_through_patches)
+{
+  // on request, a short tube (which the sphere also takes) goes through cones with its holes patched
+  const AC::Input_surface tube = make_open_tube(4.0, 16, 16);
+  const std::size_t n = 200;
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out =
+    AC::remesh(tube, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).parametric_domain(AC::Parametric_domain::CONE));
+  BOOST_TEST_MESSAGE("open tube 4 -> " << n << " through cones: " << r.domain_diagnostics.summary << "; G_avg " << r.quality.G_avg
+                                       << " theta_min " << r.quality.theta_min);
+  BOOST_TEST((r.domain == AC::Parametric_domain::CONE));
+  BOOST_TEST(r.domain_choice.empty());
+  BOOST_TEST(out.points.size() == n);
+  BOOST_TEST(check_open_tube_output(tube, out) == r.boundary_sites);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.quality.G_avg >= 0.88);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+}
+
 BOOST_AUTO_TEST_CASE(cone_domain_refuses_bad_input)
 {
-  // a surface with a boundary: the plane (or the sphere with patches) takes it, the cone domain does not
+  // a disk: the plane takes it, the cone domain does not (it takes holes only through patches, and a disk
+  // has no hole to patch)
   const AC::Input_surface square = AC::make_square_background(AC::Uniform_metric(), 300);
   AC::Remeshing_result r;
   BOOST_TEST(test::message_of([&] {

@@ -1443,6 +1443,7 @@ BOOST_AUTO_TEST_CASE(limb_body_is_bounded_by_cones_where_the_sphere_is_not)
   AC::Intrinsic_triangulation t3 = t0;
   options.positive_cones_only = true;
   options.max_cones = 16;
+  options.acceptable_log_range = options.max_log_range;  // the budget strictly
   try {
     AC::internal::place_cones(t3, options, AC::parameters::default_values());
     BOOST_ERROR("positive cones bounded the limb body");
@@ -1521,6 +1522,7 @@ BOOST_AUTO_TEST_CASE(an_impossible_budget_is_refused_with_the_distortion_reached
     AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
     AC::internal::Cone_placement_options options;
     options.max_log_range = 1e-3;
+    options.acceptable_log_range = 1e-3;
     options.max_cones = max_cones;
     try {
       AC::internal::place_cones(t, options, AC::parameters::default_values());
@@ -1532,6 +1534,13 @@ BOOST_AUTO_TEST_CASE(an_impossible_budget_is_refused_with_the_distortion_reached
       BOOST_TEST(what.find("area distortion") != std::string::npos);
       BOOST_TEST(what.find(std::to_string(max_cones) + " cones (the most allowed)") != std::string::npos);
     }
+    // above the budget but within the acceptable range once the cones are spent: the metric is returned
+    AC::Intrinsic_triangulation t2 = background(s, AC::Uniform_metric());
+    options.acceptable_log_range = 4.0;
+    const AC::internal::Cone_metric m = AC::internal::place_cones(t2, options, AC::parameters::default_values());
+    BOOST_TEST(m.cones.size() == max_cones);
+    BOOST_TEST(m.u_range > options.max_log_range);
+    BOOST_TEST(m.u_range <= options.acceptable_log_range);
   }
   // a boundary is refused
   std::vector<AC::Input_surface::Face> faces = s.faces();

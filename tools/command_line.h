@@ -181,8 +181,8 @@ inline void declare_options(CLI::App& app, Options& o)
   app.add_option("--domain", o.domain,
                  "'square': the unit square as the input (the tool builds a background resolving the metric); with "
                  "--input or --image: the parametric domain, plane | sphere | flat-torus | hyperbolic | cones | automatic "
-                 "(default: from the topology, cones where the sphere or the hyperbolic disk fails; a domain that does not fit the "
-                 "input's topology is refused)")
+                 "(default: from the topology, cones where the sphere or the hyperbolic disk fails, holes included; cones take "
+                 "every topology but a disk, holes closed by patches; a domain that does not fit the input's topology is refused)")
     ->type_name("NAME")
     ->check(CLI::IsMember({"square", "automatic", "plane", "flat-torus", "sphere", "hyperbolic", "cones"}))
     ->group(in);

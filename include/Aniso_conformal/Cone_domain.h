@@ -34,8 +34,11 @@ namespace Aniso_conformal {
  * torus, `Hyperbolic_domain::minimum_number_of_vertices()` above).
  *
  * The input's corners and crease sites are fixed sites at background vertices, as in the other closed
- * domains. Not yet: surfaces with holes (refused: `fits()`; the plane, the sphere and the other closed
- * domains take them).
+ * domains. A surface with several boundary loops, or a boundary and a genus, comes with its holes closed
+ * by patches (`remesh_in_domain()`, as for the sphere, the flat torus and the hyperbolic disk): the
+ * patches hold no CVT density, each loop is a chain of fixed sites, and a triangle the cone metric
+ * flattens next to a loop (whose edges never flip) has its longest edge split before the placement is
+ * tried again (`Cone_embedding::edge_splits`). A disk is refused (`fits()`): the plane takes it.
  *
  * \cgalModels `ParametricDomain`
  */
@@ -49,7 +52,7 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
   /// 30 degrees; with the stage: 16 to 31 degrees, at most 0.15 %; `benchmark/cones.md`)
   static constexpr bool optimizes_on_the_surface_by_default = true;
   /// the topologies it takes, in words
-  static const char* topology() { return "closed surfaces (without boundary) of any genus"; }
+  static const char* topology() { return "closed surfaces of any genus, and surfaces with several boundary loops or a boundary and a genus (holes closed by patches); not disks"; }
   /// stage 3: `cone_embedding()`
   template <typename NamedParameters>
   static Embedding embed(Intrinsic_triangulation& itri, const NamedParameters& np)
@@ -107,12 +110,15 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
     d.add("linearised_cones", double(emb.linearised_cones), "cones placed by the linearised rounds (one factorisation)", true);
     d.add("placement_solves", double(emb.solves), "Newton solves of the placement (nonlinear rounds)", true);
     d.add("charts", double(traits.number_of_charts()), "planar charts of the atlas", true);
+    if(emb.edge_splits > 0)
+      d.add("edge_splits", double(emb.edge_splits), "edges split after a placement that flattened a triangle next to a hole's loop", true);
     char text[200];
     std::snprintf(text, sizeof(text),
                   "%zu cones of %.0f to %.0f degrees (%zu linearised, %zu Newton solves); area distortion %.1f (about %.3g with the "
                   "starting cones)",
                   emb.cones.size(), lo, hi, emb.linearised_cones, emb.solves, std::exp(2 * emb.u_range), std::exp(2 * emb.start_u_range));
     d.summary = text;
+    if(emb.edge_splits > 0) d.summary += "; " + std::to_string(emb.edge_splits) + " edges split (a triangle flattened next to a hole's loop)";
     return d;
   }
 };

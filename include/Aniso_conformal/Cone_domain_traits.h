@@ -129,6 +129,7 @@ public:
           c.radius = std::max(c.radius, (p[std::size_t(k)] - c.center).norm());
           longest = std::max(longest, (p[std::size_t(k)] - p[std::size_t((k + 1) % 3)]).norm());
         }
+        if(itri.is_patch_face(std::size_t(f))) rho = {{0.0, 0.0, 0.0}};  // a hole's patch holds no site
         c.tri.push_back(internal::make_background_triangle(p, rho, f));
         c.mass += c.tri.back().mass;
         c.area += c.tri.back().area;

@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/conformal/cone_metric.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
+#include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 
 #include <Eigen/Core>
@@ -18,6 +19,7 @@
 #include <cstddef>
 #include <deque>
 #include <string>
+#include <utility>
 #include <unordered_map>
 #include <vector>
 
@@ -66,6 +68,7 @@ struct Cone_embedding {
   std::size_t linearised_cones = 0;  ///< cones placed by the linearised rounds, before the Newton solves
   std::size_t flips = 0;       ///< intrinsic Delaunay flips
   double residual = 0;         ///< max |target - angle sum| (radians)
+  std::size_t edge_splits = 0; ///< edges split at their midpoints after a placement that flattened a triangle next to a hole's loop (new vertices of the triangulation)
   std::vector<int> chart_of_face;                          ///< per face, its chart
   std::vector<std::array<Eigen::Vector2d, 3>> corner_uv;   ///< per face, its corners in its chart (counterclockwise)
   std::vector<Rigid_motion_2> transition;                  ///< per halfedge h: the twin's face chart -> h's face chart
@@ -215,6 +218,51 @@ inline void grow_cone_charts(const Intrinsic_triangulation& itri, const std::vec
     }
 }
 
+// place_cones() on `itri`; on a triangulation with seams (the loops of the holes' patches, which never
+// flip) that ends with triangles flat in the cone metric, their longest edges are split at their
+// midpoints in the triangulation as it was given and the placement runs again, at most 3 more times
+// (`splits` counts the splits). Found on CGAL's blade.off with its two holes closed: a boundary ear (an
+// input triangle with two edges on the loop) whose angle between the loop edges reached 180 degrees,
+// the only surface triangle at its loop vertex, so no flip could open it; the split of its third edge
+// gives that vertex a second triangle and a vertex of its own scale. Without seams, one call.
+template <typename NamedParameters>
+Cone_metric place_cones_splitting_flat_edges(Intrinsic_triangulation& itri, const Cone_placement_options& options, const NamedParameters& np,
+                                             std::size_t& splits)
+{
+  bool seams = false;
+  for(int v = 0; v < int(itri.number_of_vertices()) && !seams; ++v) seams = itri.seam(v) >= 0;
+  if(!seams) return place_cones(itri, options, np);
+  Intrinsic_triangulation entry = itri;  // the triangulation as given: each attempt flips `itri`
+  for(int attempt = 0;; ++attempt) {
+    std::vector<std::pair<int, int>> flat;
+    try {
+      return place_cones(itri, options, np, &flat);
+    } catch(const Convergence_failure& e) {
+      std::size_t made = 0;
+      if(attempt < 3) {
+        std::sort(flat.begin(), flat.end(), [](std::pair<int, int> x, std::pair<int, int> y) {
+          return std::minmax(x.first, x.second) < std::minmax(y.first, y.second);
+        });
+        for(std::size_t i = 0; i < flat.size(); ++i) {
+          if(i > 0 && std::minmax(flat[i].first, flat[i].second) == std::minmax(flat[i - 1].first, flat[i - 1].second)) continue;
+          const int h = entry.find_halfedge(flat[i].first, flat[i].second);
+          if(h < 0 || entry.twin(h) < 0) continue;  // flipped in: not an edge of the triangulation as given
+          split_interior_edge_at_midpoint(entry, h, midpoint_surface_point(entry, flat[i].first, flat[i].second));
+          ++made;
+        }
+      }
+      if(made == 0) {
+        if(splits == 0) throw;
+        throw Convergence_failure(std::string(e.what()) + " (after " + std::to_string(splits) +
+                                      " edges of triangles flattened next to the holes' loops were split)",
+                                  e.residual());
+      }
+      splits += made;
+      itri = entry;
+    }
+  }
+}
+
 } // namespace internal
 
 /*!
@@ -232,16 +280,19 @@ inline void grow_cone_charts(const Intrinsic_triangulation& itri, const std::vec
  * (sizes the charts), `max_conformal_iterations`, `conformal_tolerance`, `max_flips_per_edge`, `visitor`,
  * and `max_cones` (default 160).
  * \throws Invalid_input if `itri` has a boundary
- * \throws Convergence_failure if 160 cones do not bound the range of u by 2 (with the range reached), or a
+ * \throws Convergence_failure if 160 cones do not bound the range of u by 4 (with the range reached; between 2
+ *         and 4 the metric is accepted once 160 cones are placed), or a
  *         Newton solve fails
  */
 template <typename NamedParameters>
 Cone_embedding cone_embedding(Intrinsic_triangulation& itri, const NamedParameters& np)
 {
+  std::size_t emb_splits = 0;
   internal::Cone_placement_options options;
   options.max_cones = 160;
-  internal::Cone_metric m = internal::place_cones(itri, options, np);
+  internal::Cone_metric m = internal::place_cones_splitting_flat_edges(itri, options, np, emb_splits);
   Cone_embedding emb;
+  emb.edge_splits = emb_splits;
   emb.cones = m.cones;
   emb.cone_angles = m.cone_angles;
   emb.u = m.u;

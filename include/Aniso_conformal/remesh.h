@@ -39,8 +39,8 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
                                 : Parametric_domain::HYPERBOLIC;
 }
 
-// The automatic choice on a closed surface without holes (issue 16, item 5): the uniformization domain
-// `Domain` (the sphere, the hyperbolic disk); if it fails to converge (a conformal factor that double
+// The automatic choice on a closed surface, or one whose holes are closed by patches (issue 16, item 5):
+// the uniformization domain `Domain` (the sphere, the hyperbolic disk); if it fails to converge (a conformal factor that double
 // precision cannot represent, sites too close to tell apart, an output that does not close), the cone
 // domain, whose area distortion is bounded by construction. The reason is in
 // Remeshing_result::domain_choice. If the cone run fails too, Convergence_failure with the first failure's
@@ -49,7 +49,6 @@ template <typename Domain, typename AnisotropicMetric, typename NamedParameters>
 Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                                                const NamedParameters& np)
 {
-  if(!surface.boundary_loops().empty()) return remesh_in_domain<Domain>(surface, metric, result, np);
   std::string reason;
   double residual = 0;
   try {
@@ -98,11 +97,12 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *   about equal metric arc length, each an output vertex on the input loop; the patch's dual triangles
  *   removed): the output has the input's genus and loops (manual, "Several boundary loops");
  * - with `parametric_domain(Parametric_domain::CONE)`, or automatically when the sphere or the hyperbolic
- *   disk fails with `Convergence_failure` on a closed surface (long limbs: a conformal factor double
- *   precision cannot represent), the cone domain (`cone_embedding()`, `Cone_domain_traits`; issue 16):
- *   a flat metric with cone singularities whose area distortion is at most `e^4`; the output is a closed
- *   surface of the input's genus, and `Remeshing_result::domain_choice` says why cones were chosen. If
- *   the cone run fails too, `Convergence_failure` gives both reasons, the first domain's first.
+ *   disk fails with `Convergence_failure` on a closed surface or one with holes (long limbs, a long open
+ *   tube: a conformal factor double precision cannot represent), the cone domain (`cone_embedding()`,
+ *   `Cone_domain_traits`; issue 16): a flat metric with cone singularities whose area distortion is at
+ *   most `e^4`, holes closed by patches as above (a disk is refused there); the output has the input's
+ *   genus and loops, and `Remeshing_result::domain_choice` says why cones were chosen. If the cone run
+ *   fails too, `Convergence_failure` gives both reasons, the first domain's first.
  *
  * The output is checked before it is returned: a consistently oriented, connected 2-manifold with the
  * input's genus and boundary count, no triangle inverted against the input's normals; every vertex lies
