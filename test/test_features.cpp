@@ -293,6 +293,90 @@ BOOST_AUTO_TEST_CASE(corners_closer_than_half_an_output_edge_are_not_all_fixed)
   }
 }
 
+namespace {
+
+// The disk [-1, 1]^2 as an m x m grid cut by diagonals, its centre vertex raised by `height`: a spike whose
+// ring of edges (its link, about 6 / m long) is a crease component, with corners where the ring turns
+AC::Input_surface make_plate_with_a_spike(int m, double height)
+{
+  std::vector<Eigen::Vector3d> points;
+  for(int j = 0; j <= m; ++j)
+    for(int i = 0; i <= m; ++i)
+      points.push_back(Eigen::Vector3d(-1 + 2.0 * i / m, -1 + 2.0 * j / m, i == m / 2 && j == m / 2 ? height : 0.0));
+  auto at = [m](int i, int j) { return std::size_t(j * (m + 1) + i); };
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j < m; ++j)
+    for(int i = 0; i < m; ++i) {
+      faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  return AC::Input_surface(std::move(points), std::move(faces));
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(crease_components_shorter_than_an_output_edge_are_left_out)
+{
+  // the spike's creases: one component of length about 0.39 (m = 64); the cube's twelve edges: one of 24
+  const AC::Input_surface plate = make_plate_with_a_spike(64, 0.1);
+  const AC::Feature_graph g = AC::detect_features(plate, 60, 30);
+  BOOST_TEST_REQUIRE(!g.crease_edges.empty());
+  BOOST_TEST_REQUIRE(!g.corners.empty());
+  const AC::Intrinsic_triangulation t(plate, std::vector<Eigen::Matrix3d>(plate.number_of_vertices(), Eigen::Matrix3d::Identity()));
+  const double length = g.crease_length();
+  BOOST_TEST_MESSAGE("spike: " << g.crease_edges.size() << " crease edges of total length " << length << ", " << g.corners.size() << " corners");
+  std::size_t dropped = 0;
+  double dropped_length = 0;
+  // longer than the output edge: kept as it is
+  AC::Feature_graph kept = AC::internal::without_short_crease_components(plate, g, t, 0.9 * length, 30, {}, {}, dropped, dropped_length);
+  BOOST_TEST(kept.crease_edges == g.crease_edges);
+  BOOST_TEST(kept.corners == g.corners);
+  BOOST_TEST(dropped == 0u);
+  // shorter: left out, with its corners, and counted
+  kept = AC::internal::without_short_crease_components(plate, g, t, 1.1 * length, 30, {}, {}, dropped, dropped_length);
+  BOOST_TEST(kept.empty());
+  BOOST_TEST(kept.curves.empty());
+  BOOST_TEST(dropped == 1u);
+  BOOST_TEST(std::abs(dropped_length - length) <= 1e-12 * length);
+  // one of its edges marked by the user: kept whole
+  dropped = 0;
+  kept = AC::internal::without_short_crease_components(plate, g, t, 1.1 * length, 30, {g.crease_edges.front()}, {}, dropped, dropped_length);
+  BOOST_TEST(kept.crease_edges == g.crease_edges);
+  BOOST_TEST(kept.corners == g.corners);
+  BOOST_TEST(dropped == 0u);
+  // the length is measured in the metric: scaled by 2, the component is twice as long
+  const AC::Intrinsic_triangulation t2(plate, std::vector<Eigen::Matrix3d>(plate.number_of_vertices(), 2.0 * Eigen::Matrix3d::Identity()));
+  kept = AC::internal::without_short_crease_components(plate, g, t2, 1.1 * length, 30, {}, {}, dropped, dropped_length);
+  BOOST_TEST(kept.crease_edges == g.crease_edges);
+  // the cube keeps its twelve creases and eight corners below an output edge of 24
+  const AC::Input_surface cube = make_grid_cube(4);
+  const AC::Feature_graph gc = AC::detect_features(cube, 60, 30);
+  const AC::Intrinsic_triangulation tc(cube, std::vector<Eigen::Matrix3d>(cube.number_of_vertices(), Eigen::Matrix3d::Identity()));
+  kept = AC::internal::without_short_crease_components(cube, gc, tc, 23.0, 30, {}, {}, dropped, dropped_length);
+  BOOST_TEST(kept.crease_edges.size() == gc.crease_edges.size());
+  BOOST_TEST(kept.corners.size() == 8u);
+  // through remesh(): at 20 vertices (output edge about 0.48) the spike's creases are left out and the
+  // report says so; at 2000 (0.05) they are followed
+  for(std::size_t n : {std::size_t(20), std::size_t(2000)}) {
+    AC::Remeshing_result r;
+    const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Planar_domain>(plate, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+    BOOST_TEST(out.points.size() == n);
+    BOOST_TEST_MESSAGE("spike plate -> " << n << ": " << r.features.short_components_dropped << " dropped, " << r.features.corners << " corners, "
+                                         << r.features.crease_edges << " crease edges; theta_min " << r.quality.theta_min);
+    if(n == 20) {
+      BOOST_TEST(r.features.short_components_dropped == 1u);
+      BOOST_TEST(std::abs(r.features.short_length_dropped - length) <= 1e-9 * length);
+      BOOST_TEST(r.features.crease_edges == 0u);
+      BOOST_TEST(r.features.corners == 0u);
+      BOOST_TEST(AC::IO::report_json(r).at("features").at("short_components_dropped") == 1);
+    } else {
+      BOOST_TEST(r.features.short_components_dropped == 0u);
+      BOOST_TEST(r.features.crease_edges == g.crease_edges.size());
+      BOOST_TEST(r.features.corners == g.corners.size());
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(without_features_nothing_is_kept_or_counted)
 {
   // feature_angle(180), the tool's --no-features: no feature, no fixed site, the corners rounded off

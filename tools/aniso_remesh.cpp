@@ -160,6 +160,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::printf("features     input %zu curves (crease length %.4g), %zu corners; output keeps %zu of the corners and covers "
                   "%.1f %% of the crease length\n",
                   ft.curves, ft.crease_length, ft.corners, ft.corners_kept, 100.0 * ft.covered_share);
+    if(ft.short_components_dropped > 0)
+      std::printf("features     %zu crease components shorter than an output edge left out (length %.4g): no output edge can follow them\n",
+                  ft.short_components_dropped, ft.short_length_dropped);
     if(result.crease_run == AC::Crease_run::REFINED)
       std::printf("features     crease run %s: the crease sites on the crease pieces refined\n", AC::crease_run_name(result.crease_run));
     else if(result.crease_run == AC::Crease_run::INPUT_VERTICES)

@@ -271,7 +271,8 @@ inline void declare_options(CLI::App& app, Options& o)
   CLI::Option* feature_angle =
     add_real(app, "--feature-angle", o.feature_angle, "DEG",
              "sharp features: an edge is a crease when the normals of its two triangles differ by more than DEG "
-             "(default 60; 180: none); the report counts the creases and corners the output keeps",
+             "(default 60; 180: none); crease components shorter than one output edge are left out; the report counts "
+             "them and the creases and corners the output keeps",
              real("in [0, 180]", [](double x) { return x >= 0 && x <= 180; }))
       ->group(re);
   app.add_flag("--no-features", o.no_features, "no sharp feature: the same as --feature-angle 180")

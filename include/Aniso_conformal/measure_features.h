@@ -39,6 +39,11 @@ struct Feature_report {
   /// `covered_length / crease_length`, in [0, 1]; 0 when the input has no crease
   double covered_share = 0;
   double tolerance = 0;            ///< distance under which a point lies on a feature: 1e-9 of the bounding-box diagonal
+  /// crease components (crease edges connected through their vertices) shorter than one output edge in the
+  /// metric, left out before the remeshing (`remesh()`: no output edge can follow them; the short crease
+  /// fragments of a noisy scan); the figures above count the creases kept
+  std::size_t short_components_dropped = 0;
+  double short_length_dropped = 0;  ///< their total length, in the input's units
 };
 
 namespace internal {

@@ -125,7 +125,9 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *     edge is a crease (`detect_features()`; 180: no crease). On a closed surface every corner of the
  *     creases (where 1 or 3 and more meet, or where one turns by more than `corner_angle`) is a fixed site
  *     of the CVT and an output vertex exactly, except a corner closer than half the output's edge length
- *     (in the metric) to another one; `Remeshing_result::features` measures what is kept;
+ *     (in the metric) to another one; a crease component (creases connected through their vertices)
+ *     shorter than one output edge in the metric is left out with its corners unless the user marked part
+ *     of it (`Feature_report::short_components_dropped`); `Remeshing_result::features` measures what is kept;
  *   - `feature_edges` (`std::vector<std::array<std::size_t, 2>>`, default none) and `feature_vertices`
  *     (`std::vector<std::size_t>`, default none): the user's own creases (pairs of input vertex indices)
  *     and corners, kept whatever their angle, on top of those `feature_angle` finds (`detect_features()`;

@@ -53,6 +53,8 @@ struct Pipeline_start {
   std::optional<Intrinsic_triangulation> itri;  // metric_and_background()
   Remeshing_result result;                      // the figures so far
   double edge_lengths_seconds = 0;              // stage 2's seconds so far
+  std::size_t short_creases_dropped = 0;        // crease components shorter than an output edge, dropped
+  double short_crease_length_dropped = 0;       // their length (input units)
   const Input_surface& background(const Input_surface& surface) const { return patches ? patches->closed : surface; }
 };
 
@@ -91,14 +93,20 @@ Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMet
   const auto features_start = std::chrono::steady_clock::now();
   start.features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
   const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
-  if(closed) check_vertices_for_corners(start.features.corners.size(), n, options.feature_angle);
   // 1. metric, 2. edge lengths (begun)
   if(start.patches)
     start.itri.emplace(metric_and_background(background, Patched_metric<AnisotropicMetric>(metric, *start.patches), n, np, vis, result,
                                              start.edge_lengths_seconds, start.patches.get(), &surface));
   else
     start.itri.emplace(metric_and_background(surface, metric, n, np, vis, result, start.edge_lengths_seconds));
-  result.seconds[int(Stage::METRIC)] += features_seconds;
+  // the crease components shorter than an output edge dropped (fixed_corner_sites.h), then the corners
+  // counted against the vertices asked for
+  const auto short_start = std::chrono::steady_clock::now();
+  start.features = without_short_crease_components(surface, start.features, *start.itri, result.refinement.output_edge_length,
+                                                   options.corner_angle, options.feature_edges, options.feature_vertices,
+                                                   start.short_creases_dropped, start.short_crease_length_dropped);
+  if(closed) check_vertices_for_corners(start.features.corners.size(), n, options.feature_angle);
+  result.seconds[int(Stage::METRIC)] += features_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - short_start).count();
   start.result = result;
   return start;
 }
@@ -411,6 +419,8 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);
   const auto measure_start = std::chrono::steady_clock::now();
   result.features = measure_features(surface, start.features, out.points, out.faces);
+  result.features.short_components_dropped = start.short_creases_dropped;
+  result.features.short_length_dropped = start.short_crease_length_dropped;
   result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   return out;
 }

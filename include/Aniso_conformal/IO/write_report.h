@@ -130,6 +130,10 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                      {"crease_length", report_number(r.features.crease_length)},
                      {"covered_length", report_number(r.features.covered_length)},
                      {"covered_share", report_number(r.features.covered_share)}};
+  if(r.features.short_components_dropped > 0) {  // creases the detection found, left out as shorter than an output edge
+    j["features"]["short_components_dropped"] = r.features.short_components_dropped;
+    j["features"]["short_length_dropped"] = report_number(r.features.short_length_dropped);
+  }
   if(j.contains("features")) j["features"]["crease_run"] = crease_run_name(r.crease_run);  // which run stood
   if(!r.creases_not_followed.empty()) j["features"]["creases_not_followed"] = r.creases_not_followed;
   if(r.crease_sites > 0) {  // absent: no crease site placed (no crease curve, or curves too short for one)
