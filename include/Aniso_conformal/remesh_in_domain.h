@@ -105,7 +105,9 @@ Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMet
   start.features = without_short_crease_components(surface, start.features, *start.itri, result.refinement.output_edge_length,
                                                    options.corner_angle, options.feature_edges, options.feature_vertices,
                                                    start.short_creases_dropped, start.short_crease_length_dropped);
-  if(closed) check_vertices_for_corners(start.features.corners.size(), n, options.feature_angle);
+  if(closed)  // the corners that get a fixed site: those at least half an output edge apart
+    check_vertices_for_corners(corners_to_fix(start.features, *start.itri, result.refinement.output_edge_length).size(), n,
+                               options.feature_angle);
   result.seconds[int(Stage::METRIC)] += features_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - short_start).count();
   start.result = result;
   return start;

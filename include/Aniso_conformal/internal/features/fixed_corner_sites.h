@@ -217,7 +217,7 @@ inline void check_vertices_for_corners(std::size_t corners, std::size_t n, doubl
     char angle[32];
     std::snprintf(angle, sizeof(angle), "%g", feature_angle);
     throw Invalid_input("remesh(): the input has " + std::to_string(corners) + " corners (where creases sharper than the feature angle, " +
-                        angle + " degrees, meet or turn), each kept as an output vertex, but only " +
+                        angle + " degrees, meet or turn; a corner within half an output edge of another is merged into it), each kept as an output vertex, but only " +
                         std::to_string(n) + " output vertices were requested: ask for at least " + std::to_string(corners) +
                         ", or raise the feature angle (feature_angle; the tool's --feature-angle, or --no-features) or mark fewer "
                         "feature vertices to keep fewer corners");
