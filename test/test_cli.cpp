@@ -479,10 +479,19 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_cow_through_cones)
   BOOST_TEST(std::string(j.at("domain_choice")).find("the sphere failed") != std::string::npos);
   BOOST_TEST(double(j.at("conformal_embedding").at("cones")) >= 4);
 
-  // a surface with a boundary is not for cones: exit 2, nothing written
+  // a surface with holes goes through cones with its holes patched: both loops kept
   const std::string annulus = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/annulus.off";
   std::remove(mesh.c_str());
-  const Run bad = run("--input " + annulus + " --domain cones --vertices 300 --output " + mesh);
+  const Run holes = run("--input " + annulus + " --domain cones --vertices 300 --output " + mesh);
+  BOOST_TEST(holes.status == 0);
+  BOOST_TEST(holes.out.find("(domain cones)") != std::string::npos);
+  const Aniso_conformal::Input_surface ring = Aniso_conformal::IO::read_triangle_mesh(mesh);
+  BOOST_TEST(ring.number_of_vertices() == 300u);
+  BOOST_TEST(ring.boundary_loops().size() == 2u);
+  // a disk is not for cones (the plane takes it): exit 2, nothing written
+  const std::string disk = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/hip_roof.off";
+  std::remove(mesh.c_str());
+  const Run bad = run("--input " + disk + " --domain cones --vertices 300 --output " + mesh);
   BOOST_TEST(bad.status == 2);
   BOOST_TEST(bad.err.find("cones domain does not fit") != std::string::npos);
   BOOST_TEST(!exists(mesh));
