@@ -124,21 +124,54 @@ public:
   // 10 units out) create 13000 spurious elements and the band of images overflow its cap. Searched among
   // the elements whose image of p has nearly the same x0 = cosh(distance to the apex): within `tol`,
   // x0 differs by less than tol e^tol x0.
+  //
+  // The search is a box query on the image's hyperboloid coordinates (x0, y, z): within `tol`, x0 and
+  // (y, z) both differ by less than `slack` = tol e^tol x0 (cosh(r + tol) <= e^tol cosh r bounds how
+  // fast (y, z) moves along a geodesic). The images are hashed by the level floor(log2 x0) and a grid
+  // on (y, z) of cell 2^(level + 1) tol e^tol, at least the slack of the level, so a query visits a few
+  // cells of each level its x0 window meets (three when tol is small; with tol near 1 every level down to
+  // 0, each clamped to its own extent, a few cells). (An ordered map on x0 alone, visited over the x0 window, cost 60 % of
+  // CGAL's turbine.off, genus 11, where many far elements share their x0.)
   int element_index(const Eigen::Matrix3d& G)
   {
     const Eigen::Vector3d o = G * m_reference;
-    if(m_by_height.empty()) {  // the identity
-      m_by_height.emplace(m_reference.x(), 0);
+    if(m_reference_image.empty()) {  // the identity
       m_reference_image.assign(1, m_reference);
+      m_by_cell[cell_key(level_of(m_reference.x()), m_reference)].push_back(0);
     }
     const double tol = m_merge_tolerance;
     const double slack = tol * std::exp(tol) * o.x() + 1e-9;
-    for(auto it = m_by_height.lower_bound(o.x() - slack); it != m_by_height.end() && it->first <= o.x() + slack; ++it)
-      if(hyperbolic_distance(m_reference_image[std::size_t(it->second)], o) < tol) return it->second;
+    if(!std::isfinite(o.x()) || !std::isfinite(slack) || !std::isfinite(o.y()) || !std::isfinite(o.z())) {
+      // an image beyond double precision (a far element of a high genus): equal to none (its distance to
+      // any image is not a number), and not hashed
+      m_group.push_back(G);
+      m_group_inverse.push_back(lorentz_inverse(G));
+      m_reference_image.push_back(o);
+      return int(m_group.size() - 1);
+    }
+    int found = -1;
+    for(int level = level_of(o.x() - slack); level <= level_of(o.x() + slack); ++level) {
+      // the images of this level have |y|, |z| <= sinh r < x0 < 2^(level + 1): the box clamped to that
+      // (with a tolerance as wide as the level, each level's whole extent is a few cells)
+      const double c = cell_size(level), extent = std::ldexp(1.0, level + 1);
+      const double y0 = std::max(o.y() - slack, -extent), y1 = std::min(o.y() + slack, extent);
+      const double z0 = std::max(o.z() - slack, -extent), z1 = std::min(o.z() + slack, extent);
+      if(y0 > y1 || z0 > z1) continue;
+      const long long i0 = cell_coordinate(y0, c), i1 = cell_coordinate(y1, c);
+      const long long j0 = cell_coordinate(z0, c), j1 = cell_coordinate(z1, c);
+      for(long long i = i0; i <= i1; ++i)
+        for(long long j = j0; j <= j1; ++j) {
+          const auto it = m_by_cell.find(pack_cell(level, i, j));
+          if(it == m_by_cell.end()) continue;
+          for(int e : it->second)
+            if((found < 0 || e < found) && hyperbolic_distance(m_reference_image[std::size_t(e)], o) < tol) found = e;
+        }
+    }
+    if(found >= 0) return found;
     m_group.push_back(G);
     m_group_inverse.push_back(lorentz_inverse(G));
     m_reference_image.push_back(o);
-    m_by_height.emplace(o.x(), int(m_group.size() - 1));
+    m_by_cell[cell_key(level_of(o.x()), o)].push_back(int(m_group.size() - 1));
     return int(m_group.size() - 1);
   }
 
@@ -265,7 +298,21 @@ private:
   std::vector<double> m_cut_half_length;        // ... and half its length
   std::vector<double> m_distance_to_cut;        // per slot, distance_to_cut() once computed (-1 before)
   std::vector<Eigen::Matrix3d> m_group, m_group_inverse;
-  std::multimap<double, int> m_by_height;  // the elements by the x0 of their image of the reference point
+  // element_index()'s hash: the elements by the level and (y, z) cell of their image of the reference point
+  std::unordered_map<std::uint64_t, std::vector<int>> m_by_cell;
+  static int level_of(double x0) { return x0 < 2 ? 0 : std::ilogb(x0); }
+  double cell_size(int level) const { return std::ldexp(m_merge_tolerance * std::exp(m_merge_tolerance), level + 1); }
+  static long long cell_coordinate(double y, double cell) { return static_cast<long long>(std::floor(y / cell)); }
+  static std::uint64_t pack_cell(int level, long long i, long long j)
+  {
+    // distinct cells may share a key (a wider bucket: the distance test decides); never a wrong answer
+    return (std::uint64_t(level) << 56) ^ ((std::uint64_t(i) & 0xFFFFFFFULL) << 28) ^ (std::uint64_t(j) & 0xFFFFFFFULL);
+  }
+  std::uint64_t cell_key(int level, const Eigen::Vector3d& p) const
+  {
+    const double c = cell_size(level);
+    return pack_cell(level, cell_coordinate(p.y(), c), cell_coordinate(p.z(), c));
+  }
   Eigen::Vector3d m_reference = Eigen::Vector3d::UnitX();  // the point whose images tell the elements apart
   std::vector<Eigen::Vector3d> m_reference_image;          // per element, its image of m_reference
   double m_merge_tolerance = 1e-3;                         // images of it nearer than this: one element
