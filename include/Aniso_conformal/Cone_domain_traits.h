@@ -526,7 +526,6 @@ private:
           }
         cp.dt.build(cp.points);
         if(internal::chart_is_complete(chart, cp, m_band_width[c])) break;
-        if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "chart %zu: %zu faces, radius %g, own %zu, points %zu, band %zu copies, width %g\n", c, chart.faces.size(), chart.radius, cp.own, cp.points.size(), m_band[c].size(), m_band_width[c]);
         if(attempt == 8)
           throw Convergence_failure("cone domain: the Voronoi cells of chart " + std::to_string(c) + " are not complete within a band of width " +
                                         std::to_string(m_band_width[c]) + " (too few sites for the surface)",

@@ -73,13 +73,6 @@ inline bool chart_is_complete(const Cone_chart& chart, const Cone_chart_points& 
     for(int k = 0; k < 3; ++k)
       if(!cp.dt.dt.is_infinite(f->vertex(k)) && std::size_t(f->vertex(k)->info()) < cp.own) at_own = true;
     if(cp.dt.dt.is_infinite(f)) {
-      if(at_own && std::getenv("CONE_DEBUG")) {
-        for(int k = 0; k < 3; ++k)
-          if(!cp.dt.dt.is_infinite(f->vertex(k)) && std::size_t(f->vertex(k)->info()) < cp.own) {
-            const Eigen::Vector2d x = cp.points[std::size_t(f->vertex(k)->info())];
-            std::fprintf(stderr, "  own site %d on the hull at (%g %g), %g from the centre\n", cp.original[std::size_t(f->vertex(k)->info())], x.x(), x.y(), (x - chart.center).norm());
-          }
-      }
       if(at_own) return false;
       continue;
     }

@@ -309,12 +309,6 @@ private:
         }
       }
       if(still.size() == left.size()) {
-        if(std::getenv("CONE_DEBUG"))
-          for(int v : still) {
-            std::fprintf(stderr, "collapse of %d failed: spokes", v);
-            for(int s : spokes_of(v)) std::fprintf(stderr, " %d(%s)", head(s), std::size_t(head(s)) >= m_nb ? "site" : "bg");
-            std::fprintf(stderr, "\n");
-          }
         throw Convergence_failure("dual mesh: " + std::to_string(still.size()) + " " + std::string(still.size() == 1 ? "cone" : "cones") +
                                       " of the cone surface cannot be merged into a neighbouring site (too few sites around them)",
                                   double(still.size()));

@@ -93,11 +93,6 @@ protected:
     for(std::size_t v = 0; v < m_nb; ++v)
       if(!(*m_is_cone)[v] && m_out[v] >= 0 && remove_flat_vertex(int(v))) ++m_stats.removed;
     make_delaunay();
-    if(std::getenv("CONE_DEBUG")) {
-      std::size_t left = 0;
-      for(std::size_t v = 0; v < m_nb; ++v) left += !(*m_is_cone)[v] && m_out[v] >= 0;
-      std::fprintf(stderr, "cone surface delaunay: %zu background vertices, %zu removed, %zu flat left, flips %zu\n", m_nb, m_stats.removed, left, m_stats.flips);
-    }
   }
 
   static int next(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
@@ -322,7 +317,6 @@ protected:
       std::vector<int> f2 = faces;
       std::sort(f2.begin(), f2.end());
       if(std::adjacent_find(f2.begin(), f2.end()) != f2.end() || std::find(w.begin(), w.end(), v) != w.end()) {
-        if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "remove %d: star not simple (degree %zu)\n", v, d);
         return false;
       }
     }
@@ -336,7 +330,6 @@ protected:
     }
     const double two_pi = 2 * 3.14159265358979323846;
     if(std::abs(theta - two_pi) > 1e-4) {
-      if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "remove %d: angle sum %.9f\n", v, theta);
       return false;
     }
     struct Side {
@@ -381,7 +374,6 @@ protected:
         if(score > best_score) best_score = score, best = k;
       }
       if(best == m) {
-        if(std::getenv("CONE_DEBUG")) std::fprintf(stderr, "remove %d: no ear (degree %zu, left %zu)\n", v, d, m);
         return false;
       }
       const std::size_t ka = (best + m - 1) % m;
