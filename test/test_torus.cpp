@@ -30,6 +30,7 @@
 #include "mesh_checks.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -288,6 +289,75 @@ BOOST_AUTO_TEST_CASE(periodic_cvt_integrates_exactly_and_its_dual_is_a_torus)
   Eigen::Vector3d bary;
   for(const auto& p : sites) BOOST_TEST(domain.background_location(0, p + domain.lattice()[0], face, bary));
   BOOST_TEST(!domain.background_location(0, Eigen::Vector2d(std::numeric_limits<double>::quiet_NaN(), 0), face, bary));
+}
+
+// The Delaunay graph built as two halves on two threads is the graph of one triangulation: every
+// point with a triangle that matters has the same neighbours, and the same triangles matter; a margin
+// too narrow for the points is detected, not trusted.
+BOOST_AUTO_TEST_CASE(split_delaunay_graph_equals_one_triangulation)
+{
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::Vector2d> pts;
+  for(int i = 0; i < 6000; ++i) {  // dense on the left, sparse on the right (spacing 1 to 6 times)
+    const double x = std::pow(u(rng), 2.0);
+    pts.emplace_back(2 * x, u(rng));
+  }
+  const auto inner = [](const std::array<int, 3>&, const Eigen::Vector2d& c) {
+    return c.x() > 0.2 && c.x() < 1.8 && c.y() > 0.1 && c.y() < 0.9;
+  };
+  AC::internal::Delaunay_fans whole, split;
+  AC::internal::whole_delaunay_fans(pts, inner, whole);
+  const double spacing = std::sqrt(2.0 / double(pts.size()));
+  BOOST_REQUIRE(AC::internal::split_delaunay_fans(pts, 8 * spacing, 2, inner, split));
+  BOOST_TEST(split.start.size() == pts.size() + 1);
+  std::set<std::array<int, 3>> fw(whole.faces.begin(), whole.faces.end()), fs(split.faces.begin(), split.faces.end());
+  BOOST_TEST(fw.size() == whole.faces.size());
+  BOOST_TEST(fs.size() == split.faces.size());
+  BOOST_TEST((fw == fs));
+  std::set<int> relevant;
+  for(const auto& f : whole.faces) relevant.insert(f.begin(), f.end());
+  BOOST_TEST(relevant.size() > 2000u);
+  std::size_t same = 0;
+  for(int i : relevant) {
+    const std::vector<int> a(whole.nbr.begin() + whole.start[std::size_t(i)], whole.nbr.begin() + whole.start[std::size_t(i) + 1]);
+    const std::vector<int> b(split.nbr.begin() + split.start[std::size_t(i)], split.nbr.begin() + split.start[std::size_t(i) + 1]);
+    BOOST_TEST(std::is_sorted(a.begin(), a.end()));
+    same += a == b;
+  }
+  BOOST_TEST(same == relevant.size());
+  // one thread builds the same halves in turn
+  AC::internal::Delaunay_fans serial;
+  BOOST_REQUIRE(AC::internal::split_delaunay_fans(pts, 8 * spacing, 1, inner, serial));
+  BOOST_TEST((serial.nbr == split.nbr));
+  BOOST_TEST((serial.start == split.start));
+  // a margin of a hundredth of a spacing leaves wrong triangles along the split: refused
+  AC::internal::Delaunay_fans narrow;
+  BOOST_TEST(!AC::internal::split_delaunay_fans(pts, 0.01 * spacing, 2, inner, narrow));
+}
+
+// The periodic CVT integrates the same cells, bit for bit, on one thread (one triangulation) and on two
+// (two halves), with a density that varies over the torus.
+BOOST_AUTO_TEST_CASE(periodic_cvt_integrals_do_not_depend_on_the_threads)
+{
+  const AC::Input_surface s = AC::make_dupin_cyclide(72, 48);
+  AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
+  const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
+  AC::Euclidean_periodic_domain_traits one(t, emb, 1), two(t, emb, 2);
+  std::vector<Eigen::Vector2d> sites = one.initial_sites(3000, 4);
+  AC::weighted_centroidal_Voronoi_tessellation(two, sites, 0, AC::parameters::number_of_iterations(10u));
+  std::vector<AC::Euclidean_periodic_domain_traits::Cell> c1, c2;
+  one.integrate(sites, c1);
+  two.integrate(sites, c2);
+  BOOST_REQUIRE(c1.size() == c2.size());
+  std::size_t differ = 0;
+  double mass = 0;
+  for(std::size_t i = 0; i < c1.size(); ++i) {
+    differ += !(c1[i].mass == c2[i].mass && c1[i].energy == c2[i].energy && c1[i].centroid == c2[i].centroid);
+    mass += c2[i].mass;
+  }
+  BOOST_TEST(differ == 0u);
+  BOOST_TEST(std::abs(mass - two.total_mass()) < 1e-9 * two.total_mass());
 }
 
 BOOST_AUTO_TEST_CASE(table2_cyclide_meets_the_quality_bar)

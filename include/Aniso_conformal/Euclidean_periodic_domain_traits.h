@@ -9,6 +9,7 @@
 #include <Aniso_conformal/flat_torus_embedding.h>
 #include <Aniso_conformal/internal/CVT/quotient_triangles.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
+#include <Aniso_conformal/internal/CVT/split_delaunay.h>
 #include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 
 #include <Eigen/Core>
@@ -38,8 +39,11 @@ namespace Aniso_conformal {
  * the sites are wrapped into the fundamental cell and translated copies are added in a band around it,
  * wide enough that every Voronoi cell meeting a background triangle is complete: the band starts at
  * three site spacings beyond the triangles' reach and is widened until every Delaunay circle that
- * matters lies inside it (a test, not a guess). A CGAL `Delaunay_triangulation_2` of the sites and
- * copies gives the Voronoi diagram of the torus; each background triangle is clipped against the cells
+ * matters lies inside it (a test, not a guess). The Delaunay graph of the sites and copies gives the
+ * Voronoi diagram of the torus: with two threads or more it is built as two CGAL
+ * `Delaunay_triangulation_2` of the two halves of the band, one per thread, whose fans are certified
+ * against the whole band (one triangulation of the whole band where that fails; the same graph, so the
+ * integrals do not depend on the number of threads); each background triangle is clipped against the cells
  * it meets and the integrals of the copies are folded back onto their sites (first moments shifted by
  * the copy's lattice vector). CGAL's `Periodic_2_Delaunay_triangulation_2` is not used because it
  * handles only rectangular (axis-aligned) domains.
@@ -185,18 +189,18 @@ public:
     const std::size_t ns = sites.size();
     std::vector<Point> wrapped(ns);
     for(std::size_t i = 0; i < ns; ++i) wrapped[i] = wrap(sites[i]);
-    Periodic_delaunay pd;
-    build_periodic_delaunay(wrapped, pd);
-    std::vector<int> start, nbr;
-    internal::delaunay_neighbours(pd.dt, pd.handle, start, nbr);
+    std::vector<Point> points;
+    std::vector<int> original;
+    internal::Delaunay_fans fans;
+    periodic_fans(wrapped, points, original, fans);
     std::vector<internal::Cell_accumulator> acc;
-    internal::integrate_restricted_voronoi(m_tri, pd.points, start, nbr, m_threads, acc);
+    internal::integrate_restricted_voronoi(m_tri, points, fans.start, fans.nbr, m_threads, acc);
     std::vector<internal::Cell_accumulator> folded(ns);
-    for(std::size_t e = 0; e < pd.points.size(); ++e) {
+    for(std::size_t e = 0; e < points.size(); ++e) {
       const internal::Cell_accumulator& a = acc[e];
       if(a.mass == 0) continue;
-      internal::Cell_accumulator& f = folded[std::size_t(pd.original[e])];
-      const Eigen::Vector2d shift = pd.points[e] - wrapped[std::size_t(pd.original[e])];
+      internal::Cell_accumulator& f = folded[std::size_t(original[e])];
+      const Eigen::Vector2d shift = points[e] - wrapped[std::size_t(original[e])];
       f.mass += a.mass;
       f.mx += a.mx - a.mass * shift.x();
       f.my += a.my - a.mass * shift.y();
@@ -271,52 +275,109 @@ private:
     std::vector<int> original;
   };
 
-  void build_periodic_delaunay(const std::vector<Point>& wrapped, Periodic_delaunay& pd) const
+  // the band half-widths (lattice coordinates) of attempt `attempt` for ns sites
+  std::array<double, 2> band_widths(std::size_t ns, int attempt) const
+  {
+    const double widen = 3 * std::pow(1.6, attempt), spacing = std::sqrt(m_area / double(ns));
+    return {{m_reach[0] + widen * spacing / m_height[0], m_reach[1] + widen * spacing / m_height[1]}};
+  }
+
+  // the wrapped sites (indices 0 .. n-1, in `points`) and their translates in the band of half-widths
+  // `m` around the fundamental cell, with the site each stands for
+  void band_points(const std::vector<Point>& wrapped, const std::array<double, 2>& m, std::vector<Point>& points,
+                   std::vector<int>& original) const
+  {
+    const std::size_t ns = wrapped.size();
+    points.assign(wrapped.begin(), wrapped.end());
+    original.resize(ns);
+    for(std::size_t i = 0; i < ns; ++i) original[i] = int(i);
+    std::vector<Eigen::Vector2d> st(ns);
+    for(std::size_t i = 0; i < ns; ++i) st[i] = m_inverse * wrapped[i];
+    const int ks = int(std::ceil(m[0])), kt = int(std::ceil(m[1]));
+    for(int i = -ks; i <= ks + 1; ++i)
+      for(int j = -kt; j <= kt + 1; ++j) {
+        if(i == 0 && j == 0) continue;
+        for(std::size_t s = 0; s < ns; ++s) {
+          const double a = st[s].x() + i, b = st[s].y() + j;
+          if(a < -m[0] || a > 1 + m[0] || b < -m[1] || b > 1 + m[1]) continue;
+          points.push_back(wrapped[s] + double(i) * m_lattice[0] + double(j) * m_lattice[1]);
+          original.push_back(int(s));
+        }
+      }
+  }
+
+  // A Delaunay triangle of the band matters if it has a vertex at an original site or its circumcentre
+  // lies where the background triangles reach; each such circle must lie in the band (half-widths m):
+  // then no translate left out can be inside it, so those triangles and the Voronoi vertices there are
+  // those of the torus.
+  bool matters(const std::array<int, 3>& sorted_vertices, std::size_t ns, const Eigen::Vector2d& centre) const
+  {
+    if(sorted_vertices[0] < int(ns)) return true;
+    const Eigen::Vector2d cst = m_inverse * centre;
+    return cst.x() >= -m_reach[0] && cst.x() <= 1 + m_reach[0] && cst.y() >= -m_reach[1] && cst.y() <= 1 + m_reach[1];
+  }
+  bool circle_in_band(const Eigen::Vector2d& centre, double r, const std::array<double, 2>& m) const
+  {
+    const Eigen::Vector2d cst = m_inverse * centre;
+    const double rs = r / m_height[0], rt = r / m_height[1];
+    return cst.x() - rs >= -m[0] && cst.x() + rs <= 1 + m[0] && cst.y() - rt >= -m[1] && cst.y() + rt <= 1 + m[1];
+  }
+
+  [[noreturn]] static void band_too_narrow(std::size_t ns)
+  {
+    throw Convergence_failure("flat torus: " + std::to_string(ns) +
+                                  " sites leave Voronoi cells too large for the periodic Delaunay triangulation",
+                              double(ns));
+  }
+
+  // The Delaunay graph of the wrapped sites and their translates in a band wide enough (see the class
+  // comment), for the integration: built as two halves on two threads (internal::split_delaunay_fans()),
+  // or as one triangulation where a half's margin is too narrow; the same graph either way.
+  void periodic_fans(const std::vector<Point>& wrapped, std::vector<Point>& points, std::vector<int>& original,
+                     internal::Delaunay_fans& fans) const
   {
     const std::size_t ns = wrapped.size();
     if(ns == 0) throw Invalid_input("Euclidean_periodic_domain_traits: no site");
     const double spacing = std::sqrt(m_area / double(ns));
-    std::vector<Eigen::Vector2d> st(ns);
-    for(std::size_t i = 0; i < ns; ++i) st[i] = m_inverse * wrapped[i];
-    double widen = 3;
-    for(int attempt = 0; attempt < 8; ++attempt, widen *= 1.6) {
-      // band half-widths in lattice coordinates
-      const double ms = m_reach[0] + widen * spacing / m_height[0], mt = m_reach[1] + widen * spacing / m_height[1];
-      pd.points.assign(wrapped.begin(), wrapped.end());
-      pd.original.resize(ns);
-      for(std::size_t i = 0; i < ns; ++i) pd.original[i] = int(i);
-      const int ks = int(std::ceil(ms)), kt = int(std::ceil(mt));
-      for(int i = -ks; i <= ks + 1; ++i)
-        for(int j = -kt; j <= kt + 1; ++j) {
-          if(i == 0 && j == 0) continue;
-          for(std::size_t s = 0; s < ns; ++s) {
-            const double a = st[s].x() + i, b = st[s].y() + j;
-            if(a < -ms || a > 1 + ms || b < -mt || b > 1 + mt) continue;
-            pd.points.push_back(wrapped[s] + double(i) * m_lattice[0] + double(j) * m_lattice[1]);
-            pd.original.push_back(int(s));
-          }
+    for(int attempt = 0; attempt < 8; ++attempt) {
+      const std::array<double, 2> m = band_widths(ns, attempt);
+      band_points(wrapped, m, points, original);
+      const auto face_matters = [&](const std::array<int, 3>& v, const Eigen::Vector2d& c) { return matters(v, ns, c); };
+      if(m_threads < 2 || !internal::split_delaunay_fans(points, m_split_margin * spacing, m_threads, face_matters, fans)) {
+        if(m_threads >= 2 && ++m_split_failures >= 3) {  // the margin is too narrow for these sites: widen it
+          m_split_margin = std::min(32.0, 2 * m_split_margin);
+          m_split_failures = 0;
         }
+        internal::whole_delaunay_fans(points, face_matters, fans);
+      } else {
+        m_split_failures = 0;
+      }
+      bool complete = true;
+      for(std::size_t k = 0; k < fans.faces.size() && complete; ++k) complete = circle_in_band(fans.centre[k], fans.radius[k], m);
+      if(complete) return;
+    }
+    band_too_narrow(ns);
+  }
+
+  // the same band in one CGAL triangulation, for the dual mesh and the pictures
+  void build_periodic_delaunay(const std::vector<Point>& wrapped, Periodic_delaunay& pd) const
+  {
+    const std::size_t ns = wrapped.size();
+    if(ns == 0) throw Invalid_input("Euclidean_periodic_domain_traits: no site");
+    for(int attempt = 0; attempt < 8; ++attempt) {
+      const std::array<double, 2> m = band_widths(ns, attempt);
+      band_points(wrapped, m, pd.points, pd.original);
       pd.build(pd.points);
-      // Every Delaunay circle that matters (around a triangle at an original site, or centred where the
-      // background triangles reach) must lie in the band: then no translate left out can be inside it,
-      // so those triangles and the Voronoi vertices there are those of the torus.
       bool complete = true;
       for(auto f = pd.dt.finite_faces_begin(); f != pd.dt.finite_faces_end() && complete; ++f) {
-        const K::Point_2 c = pd.dt.circumcenter(f);
-        const Eigen::Vector2d cc(c.x(), c.y());
-        const Eigen::Vector2d cst = m_inverse * cc;
-        const bool at_original = f->vertex(0)->info() < int(ns) || f->vertex(1)->info() < int(ns) || f->vertex(2)->info() < int(ns);
-        const bool in_reach = cst.x() >= -m_reach[0] && cst.x() <= 1 + m_reach[0] && cst.y() >= -m_reach[1] && cst.y() <= 1 + m_reach[1];
-        if(!at_original && !in_reach) continue;
-        const double r = (cc - pd.points[std::size_t(f->vertex(0)->info())]).norm();
-        const double rs = r / m_height[0], rt = r / m_height[1];
-        complete = cst.x() - rs >= -ms && cst.x() + rs <= 1 + ms && cst.y() - rt >= -mt && cst.y() + rt <= 1 + mt;
+        std::array<int, 3> v{{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}};
+        std::sort(v.begin(), v.end());
+        const Eigen::Vector2d c = internal::split_delaunay_detail::circumcentre(pd.points, v);
+        if(matters(v, ns, c)) complete = circle_in_band(c, (c - pd.points[std::size_t(v[0])]).norm(), m);
       }
       if(complete) return;
     }
-    throw Convergence_failure("flat torus: " + std::to_string(ns) +
-                                  " sites leave Voronoi cells too large for the periodic Delaunay triangulation",
-                              double(ns));
+    band_too_narrow(ns);
   }
 
   std::array<Point, 2> m_lattice;
@@ -327,6 +388,10 @@ private:
   std::vector<internal::Background_triangle> m_tri;
   internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
+  // how far (site spacings) each half of the split Delaunay triangulation reaches beyond the other's
+  // side; doubled when too narrow (it changes the time, never the result)
+  mutable double m_split_margin = 4;
+  mutable int m_split_failures = 0;  // consecutive
 };
 
 } // namespace Aniso_conformal

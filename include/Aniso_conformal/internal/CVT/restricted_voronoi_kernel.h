@@ -5,12 +5,13 @@
 #define ANISO_CONFORMAL_INTERNAL_CVT_RESTRICTED_VORONOI_KERNEL_H
 
 #include <Aniso_conformal/internal/CVT/clip_integrate.h>
+#include <Aniso_conformal/internal/parallel_for.h>
 
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -24,21 +25,19 @@
 namespace Aniso_conformal {
 namespace internal {
 
-// runs work(0 .. chunks-1) on up to `threads` threads
+// runs work(0 .. chunks-1) on up to `threads` threads, each taking the next chunk not yet taken (the
+// chunks' costs differ); an exception thrown by a chunk is rethrown here (parallel_blocks())
 template <typename Work>
 void run_chunks(unsigned threads, std::size_t chunks, Work& work)
 {
-  const unsigned nt = std::min<unsigned>(threads, unsigned(chunks));
-  if(nt <= 1) {
-    for(std::size_t c = 0; c < chunks; ++c) work(c);
-    return;
-  }
-  std::vector<std::thread> pool;
-  for(unsigned t = 0; t < nt; ++t)
-    pool.emplace_back([&, t]() {
-      for(std::size_t c = t; c < chunks; c += nt) work(c);
-    });
-  for(auto& th : pool) th.join();
+  const unsigned nt = std::min<unsigned>(std::max(1u, threads), unsigned(chunks));
+  std::atomic<std::size_t> next{0};
+  parallel_blocks(
+      nt, nt,
+      [&](std::size_t, std::size_t, std::size_t) {
+        for(std::size_t c = next++; c < chunks; c = next++) work(c);
+      },
+      1);
 }
 
 // Greedy walk on a Delaunay graph in CSR form (neighbours of i: nbr[start[i] .. start[i+1])) from
@@ -133,7 +132,8 @@ const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const s
  * Liu, Sun and Wang 2009, "Isotropic remeshing with fast and exact computation of restricted Voronoi
  * diagram"). The triangles are split into 16 fixed chunks (consecutive, so a
  * walk starts next to the previous triangle's site when the triangles are in a space-filling-curve
- * order) summed in order: the result does not depend on the number of threads. `first` is a site
+ * order), which the threads take as they become free, each into integrals of its own, summed in chunk
+ * order: the result does not depend on the number of threads. `first` is a site
  * with a Delaunay neighbour (where each chunk's first walk starts).
  *
  * The cell-geometry policy P (the plane and flat torus, the sphere, the Klein disk) provides:
@@ -203,8 +203,9 @@ void integrate_restricted_voronoi(const Policy& P, std::size_t ns, const std::ve
   };
   run_chunks(threads, chunks, work);
   out.assign(ns, Accumulator());
-  for(std::size_t i = 0; i < ns; ++i)
+  parallel_for(ns, std::max(1u, threads), [&](std::size_t i) {
     for(std::size_t c = 0; c < chunks; ++c) out[i] += acc[c][i];
+  });
 }
 
 } // namespace internal
