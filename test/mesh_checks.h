@@ -1,7 +1,7 @@
 // Copyright (c) 2026 Aniso_conformal developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Topology and area of a triangle soup, shared by the test modules.
+// Topology and area of a triangle soup, and point-to-segment distances, shared by the test modules.
 
 #ifndef ANISO_CONFORMAL_TEST_MESH_CHECKS_H
 #define ANISO_CONFORMAL_TEST_MESH_CHECKS_H
@@ -43,6 +43,14 @@ Mesh_counts count_mesh(const Points& points, const Faces& faces)
     }
   c.euler = int(points.size()) - int(edges.size()) + int(faces.size());
   return c;
+}
+
+// distance from p to the segment ab
+inline double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  const Eigen::Vector3d d = b - a;
+  const double t = std::max(0.0, std::min(1.0, (p - a).dot(d) / d.squaredNorm()));
+  return (p - (a + t * d)).norm();
 }
 
 } // namespace test

@@ -28,6 +28,8 @@
 #include <string>
 #include <vector>
 
+#include "mesh_checks.h"
+
 BOOST_AUTO_TEST_SUITE(boundaries)  // also a namespace: keeps the helpers apart from other modules in one unit
 
 namespace AC = Aniso_conformal;
@@ -79,13 +81,7 @@ AC::Input_surface make_plate_with_two_holes(int m)
   });
 }
 
-// distance from p to the segment ab
-double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
-{
-  const Eigen::Vector3d d = b - a;
-  const double t = std::max(0.0, std::min(1.0, (p - a).dot(d) / d.squaredNorm()));
-  return (p - (a + t * d)).norm();
-}
+using test::segment_distance;
 
 double diagonal(const AC::Input_surface& s)
 {

@@ -29,6 +29,7 @@
 #include <Aniso_conformal/remesh.h>
 
 #include "domain_concept_checks.h"
+#include "mesh_checks.h"
 #include "limb_body.h"
 #include "message_checks.h"
 
@@ -356,13 +357,7 @@ AC::Input_surface make_open_tube(double length, int around, int rings)
   return AC::Input_surface(std::move(points), std::move(faces));
 }
 
-// distance from p to the segment ab
-double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
-{
-  const Eigen::Vector3d d = b - a;
-  const double t = std::max(0.0, std::min(1.0, (p - a).dot(d) / d.squaredNorm()));
-  return (p - (a + t * d)).norm();
-}
+using test::segment_distance;
 
 // checks that the output keeps the tube's topology (genus 0, two loops) and that every output boundary
 // vertex lies on an input loop; returns the number of output boundary vertices

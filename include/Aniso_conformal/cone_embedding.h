@@ -243,13 +243,7 @@ Cone_metric place_cones_splitting_flat_edges(Intrinsic_triangulation& itri, cons
         std::sort(flat.begin(), flat.end(), [](std::pair<int, int> x, std::pair<int, int> y) {
           return std::minmax(x.first, x.second) < std::minmax(y.first, y.second);
         });
-        for(std::size_t i = 0; i < flat.size(); ++i) {
-          if(i > 0 && std::minmax(flat[i].first, flat[i].second) == std::minmax(flat[i - 1].first, flat[i - 1].second)) continue;
-          const int h = entry.find_halfedge(flat[i].first, flat[i].second);
-          if(h < 0 || entry.twin(h) < 0) continue;  // flipped in: not an edge of the triangulation as given
-          split_interior_edge_at_midpoint(entry, h, midpoint_surface_point(entry, flat[i].first, flat[i].second));
-          ++made;
-        }
+        made = split_edges_at_midpoints(entry, flat, [](int) { return true; });
       }
       if(made == 0) {
         if(splits == 0) throw;

@@ -250,12 +250,7 @@ Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const Nam
       if(attempt < 3) {
         std::sort(obtuse.begin(), obtuse.end());
         obtuse.erase(std::unique(obtuse.begin(), obtuse.end()), obtuse.end());
-        for(const auto& ab : obtuse) {
-          const int h = entry.find_halfedge(ab.first, ab.second);
-          if(h < 0 || entry.twin(h) < 0 || !entry.is_seam_edge(h)) continue;
-          internal::split_interior_edge_at_midpoint(entry, h, internal::midpoint_surface_point(entry, ab.first, ab.second));
-          ++made;
-        }
+        made = internal::split_edges_at_midpoints(entry, obtuse, [&](int h) { return entry.is_seam_edge(h); });
       }
       if(made == 0)
         throw Convergence_failure(std::string(e.what()) + " (also with the puncture far from the holes' patches" +

@@ -95,12 +95,17 @@ Corner_site<typename Domain::Traits::Point> seam_site(const typename Domain::Emb
   return c;
 }
 
-// `true` if background vertices v and w are closer than half the output edge length `h` in the metric
-// (the straight segment between them, measured with the mean of their two square roots Q, as
-// refine_background() measures): two fixed sites that close make a sliver
+// the length in the metric of the straight segment between background vertices v and w, measured with
+// the mean of their two square roots Q (as refine_background() measures)
+inline double metric_distance(const Intrinsic_triangulation& itri, int v, int w)
+{
+  return (0.5 * (itri.Q(v) + itri.Q(w)) * (itri.position(w) - itri.position(v))).norm();
+}
+// `true` if background vertices v and w are closer than half the output edge length `h` in the metric:
+// two fixed sites that close make a sliver
 inline bool closer_than_half_an_edge(const Intrinsic_triangulation& itri, int v, int w, double h)
 {
-  return (0.5 * (itri.Q(v) + itri.Q(w)) * (itri.position(w) - itri.position(v))).norm() < 0.5 * h;
+  return metric_distance(itri, v, w) < 0.5 * h;
 }
 
 // The corners to fix: every corner, except one closer than half the output's edge length `h` (in the
@@ -165,7 +170,7 @@ inline Feature_graph without_short_crease_components(const Input_surface& surfac
   for(const auto& e : g.crease_edges) {
     const int a = int(e[0]), b = int(e[1]);
     const std::size_t r = find(e[0]);
-    metric_length[r] += (0.5 * (itri.Q(a) + itri.Q(b)) * (itri.position(b) - itri.position(a))).norm();
+    metric_length[r] += metric_distance(itri, a, b);
     length[r] += (surface.points()[e[1]] - surface.points()[e[0]]).norm();
   }
   for(const auto& m : marked_edges)

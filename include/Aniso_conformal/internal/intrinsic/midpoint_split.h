@@ -64,6 +64,24 @@ inline Surface_point midpoint_surface_point(const Intrinsic_triangulation& itri,
   return sp;
 }
 
+// Splits at its midpoint (split_interior_edge_at_midpoint(), midpoint_surface_point()), in that order,
+// each edge (a, b) of `edges` that is still an interior edge of `itri` and whose halfedge from a to b
+// `keep` accepts; an edge listed again, in either direction, is no longer an edge once split and is
+// skipped. Returns the number of edges split. The retries of the spherical and cone embeddings split so
+// the edges of triangles a solve left flat.
+template <typename Keep>
+std::size_t split_edges_at_midpoints(Intrinsic_triangulation& itri, const std::vector<std::pair<int, int>>& edges, const Keep& keep)
+{
+  std::size_t made = 0;
+  for(const auto& ab : edges) {
+    const int h = itri.find_halfedge(ab.first, ab.second);
+    if(h < 0 || itri.twin(h) < 0 || !keep(h)) continue;
+    split_interior_edge_at_midpoint(itri, h, midpoint_surface_point(itri, ab.first, ab.second));
+    ++made;
+  }
+  return made;
+}
+
 } // namespace internal
 } // namespace Aniso_conformal
 
