@@ -90,16 +90,59 @@ void test_faces(const DT& dt, const std::vector<Eigen::Vector2d>& pts, const Own
   }
 }
 
-// appends the finite neighbours of vertex vh in `dt`, in increasing order, to `nbr`
-template <typename DT>
-void sorted_neighbours(const DT& dt, typename DT::Vertex_handle vh, std::vector<int>& nbr)
+// The neighbours of the vertices of `dt` (vertex info: the point index, below n) whose point `want`s
+// them, in CSR form over all n points (start has n + 1 entries; the others get none), each list in
+// increasing order: the directed edges of every face, counterclockwise, the infinite faces giving their
+// finite edge (a hull vertex's neighbour across the hull), bucketed by head then by tail (two counting
+// sorts instead of a sort per list).
+template <typename DT, typename Want>
+void sorted_neighbour_lists(const DT& dt, std::size_t n, const Want& want, std::vector<int>& start, std::vector<int>& nbr)
 {
-  const std::size_t first = nbr.size();
-  auto w = dt.incident_vertices(vh), done = w;
-  if(w != nullptr) do {
-      if(!dt.is_infinite(w)) nbr.push_back(w->info());
-    } while(++w != done);
-  std::sort(nbr.begin() + std::ptrdiff_t(first), nbr.end());
+  start.assign(n + 1, 0);
+  nbr.clear();
+  if(dt.dimension() < 2) {  // no faces: circulate
+    std::vector<std::vector<int>> lists(n);
+    for(auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+      if(!want(v->info())) continue;
+      auto w = dt.incident_vertices(v), done = w;
+      if(w != nullptr) do {
+          if(!dt.is_infinite(w)) lists[std::size_t(v->info())].push_back(w->info());
+        } while(++w != done);
+      std::sort(lists[std::size_t(v->info())].begin(), lists[std::size_t(v->info())].end());
+    }
+    for(std::size_t i = 0; i < n; ++i) {
+      start[i] = int(nbr.size());
+      nbr.insert(nbr.end(), lists[i].begin(), lists[i].end());
+    }
+    start[n] = int(nbr.size());
+    return;
+  }
+  std::vector<int> tail, head;
+  tail.reserve(6 * n + 16);
+  head.reserve(6 * n + 16);
+  for(auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f)
+    for(int k = 0; k < 3; ++k) {
+      const auto a = f->vertex(DT::ccw(k)), b = f->vertex(DT::cw(k));
+      if(dt.is_infinite(a) || dt.is_infinite(b) || !want(a->info())) continue;
+      tail.push_back(a->info());
+      head.push_back(b->info());
+    }
+  const std::size_t m = tail.size();
+  std::vector<int> by_head_start(n + 1, 0), by_head(m);
+  for(std::size_t e = 0; e < m; ++e) ++by_head_start[std::size_t(head[e]) + 1];
+  for(std::size_t i = 0; i < n; ++i) by_head_start[i + 1] += by_head_start[i];
+  {
+    std::vector<int> fill(by_head_start.begin(), by_head_start.end() - 1);
+    for(std::size_t e = 0; e < m; ++e) by_head[std::size_t(fill[std::size_t(head[e])]++)] = int(e);
+  }
+  for(std::size_t e = 0; e < m; ++e) ++start[std::size_t(tail[e]) + 1];
+  for(std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  nbr.resize(m);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for(std::size_t k = 0; k < m; ++k) {
+    const std::size_t e = std::size_t(by_head[k]);
+    nbr[std::size_t(fill[std::size_t(tail[e])]++)] = head[e];
+  }
 }
 
 // A uniform grid of bucketed points (about one per cell) that answers whether a disk holds a point of
@@ -180,19 +223,13 @@ void whole_delaunay_fans(const std::vector<Eigen::Vector2d>& pts, const Matters&
   Indexed_delaunay_2 d;
   d.build(pts);
   out = Delaunay_fans();
-  out.nbr.reserve(6 * pts.size() + 64);
   out.faces.reserve(2 * pts.size() + 64);
   out.centre.reserve(2 * pts.size() + 64);
   out.radius.reserve(2 * pts.size() + 64);
   std::vector<unsigned char> flag(pts.size(), 0);
   split_delaunay_detail::test_faces(
       d.dt, pts, [](int) { return true; }, matters, [](const Eigen::Vector2d&, double) { return true; }, flag, out);
-  out.start.assign(pts.size() + 1, 0);
-  for(std::size_t i = 0; i < pts.size(); ++i) {
-    out.start[i] = int(out.nbr.size());
-    if(d.has_vertex(i)) split_delaunay_detail::sorted_neighbours(d.dt, d.handle[i], out.nbr);
-  }
-  out.start[pts.size()] = int(out.nbr.size());
+  split_delaunay_detail::sorted_neighbour_lists(d.dt, pts.size(), [](int) { return true; }, out.start, out.nbr);
 }
 
 /*
@@ -221,10 +258,10 @@ bool split_delaunay_fans(const std::vector<Eigen::Vector2d>& pts, double margin,
   for(std::size_t i = 0; i < n; ++i) xs[i] = pts[i][axis];
   std::nth_element(xs.begin(), xs.begin() + std::ptrdiff_t(n / 2), xs.end());
   const double split = xs[n / 2];
-  // owner of point i: 0 if x < split, else 1
+  // point i belongs to half 0 if its coordinate is below the split, else to half 1
   struct Half {
     std::vector<int> owned;          // points of this side, increasing
-    std::vector<int> start, nbr;     // CSR over `owned`
+    std::vector<int> start, nbr;     // CSR over all points: the neighbours of the owned ones
     Delaunay_fans faces;             // the triangles that matter found from this side
     bool ok = true;
   };
@@ -243,12 +280,9 @@ bool split_delaunay_fans(const std::vector<Eigen::Vector2d>& pts, double margin,
         in.emplace_back(Indexed_delaunay_2::K::Point_2(pts[i].x(), pts[i].y()), int(i));
     Indexed_delaunay_2::Triangulation dt;
     dt.insert(in.begin(), in.end());
-    H.nbr.reserve(6 * H.owned.size() + 64);
     H.faces.faces.reserve(2 * H.owned.size() + 64);
     H.faces.centre.reserve(2 * H.owned.size() + 64);
     H.faces.radius.reserve(2 * H.owned.size() + 64);
-    std::vector<Indexed_delaunay_2::Vertex_handle> handle(n);
-    for(auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) handle[std::size_t(v->info())] = v;
     // a circle inside the half-plane of the points held is empty; one that leaves it, if no point
     // outside the half-plane lies in it
     const auto trusted = [&](const Eigen::Vector2d& c, double r) {
@@ -258,19 +292,12 @@ bool split_delaunay_fans(const std::vector<Eigen::Vector2d>& pts, double margin,
     const auto own = [&](int i) { return (pts[std::size_t(i)][axis] < split) == left; };
     std::vector<unsigned char> flag(n, 0);
     split_delaunay_detail::test_faces(dt, pts, own, matters, trusted, flag, H.faces);
-    H.start.assign(H.owned.size() + 1, 0);
-    for(std::size_t k = 0; k < H.owned.size(); ++k) {
-      const int i = H.owned[k];
-      H.start[k] = int(H.nbr.size());
-      const auto vh = handle[std::size_t(i)];
-      if(vh == Indexed_delaunay_2::Vertex_handle() || vh->info() != i) continue;
+    for(int i : H.owned)
       if(flag[std::size_t(i)] == 3) {  // a triangle that matters, and one not certified
         H.ok = false;
         return;
       }
-      split_delaunay_detail::sorted_neighbours(dt, vh, H.nbr);
-    }
-    H.start[H.owned.size()] = int(H.nbr.size());
+    split_delaunay_detail::sorted_neighbour_lists(dt, n, own, H.start, H.nbr);
   };
   parallel_blocks(
       2, threads,
@@ -282,16 +309,12 @@ bool split_delaunay_fans(const std::vector<Eigen::Vector2d>& pts, double margin,
 
   // merge: the CSR in point order
   out = Delaunay_fans();
-  std::vector<std::pair<int, int>> where(n);  // (half, position in owned)
-  for(int h = 0; h < 2; ++h)
-    for(std::size_t k = 0; k < half[std::size_t(h)].owned.size(); ++k) where[std::size_t(half[std::size_t(h)].owned[k])] = {h, int(k)};
   out.start.assign(n + 1, 0);
   out.nbr.reserve(half[0].nbr.size() + half[1].nbr.size());
   for(std::size_t i = 0; i < n; ++i) {
     out.start[i] = int(out.nbr.size());
-    const Half& H = half[std::size_t(where[i].first)];
-    const std::size_t k = std::size_t(where[i].second);
-    out.nbr.insert(out.nbr.end(), H.nbr.begin() + H.start[k], H.nbr.begin() + H.start[k + 1]);
+    const Half& H = half[pts[i][axis] < split ? 0 : 1];
+    out.nbr.insert(out.nbr.end(), H.nbr.begin() + H.start[i], H.nbr.begin() + H.start[i + 1]);
   }
   out.start[n] = int(out.nbr.size());
   for(const Half& H : half) {
