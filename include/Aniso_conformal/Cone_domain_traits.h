@@ -138,6 +138,10 @@ public:
       m_total_mass += c.mass;
     }
     m_tolerance = 1e-9 * longest;
+    m_chart_order.resize(m_chart.size());
+    for(std::size_t c = 0; c < m_chart.size(); ++c) m_chart_order[c] = c;
+    std::stable_sort(m_chart_order.begin(), m_chart_order.end(),
+                     [&](std::size_t a, std::size_t b) { return m_chart[a].faces.size() > m_chart[b].faces.size(); });
     m_is_cone.assign(itri.number_of_vertices(), 0);
     for(int v : emb.cones) m_is_cone[std::size_t(v)] = 1;
     m_faces.resize(nf);
@@ -269,7 +273,7 @@ public:
     const std::vector<Chart_points> charts = chart_points();
     std::vector<std::array<double, 4>> acc(sites.size(), {{0.0, 0.0, 0.0, 0.0}});  // mass, first moment (home frame), energy
     std::vector<std::vector<std::pair<int, std::array<double, 4>>>> part(m_chart.size());
-    internal::parallel_for(m_chart.size(), m_threads, [&](std::size_t c) {
+    internal::parallel_for_dynamic(m_chart_order, m_threads, [&](std::size_t c) {
       const Chart_points& cp = charts[c];
       std::vector<internal::Cell_accumulator> a;
       internal::integrate_restricted_voronoi(m_chart[c].tri, cp.points, cp.start, cp.nbr, 1, a);
@@ -279,7 +283,7 @@ public:
         const Eigen::Vector2d first = m.R.transpose() * (Eigen::Vector2d(a[e].mx, a[e].my) - a[e].mass * m.t);
         part[c].push_back({cp.original[e], {{a[e].mass, first.x(), first.y(), a[e].energy}}});
       }
-    }, 1);
+    });
     for(const auto& p : part)
       for(const auto& q : p)
         for(int k = 0; k < 4; ++k) acc[std::size_t(q.first)][std::size_t(k)] += q.second[std::size_t(k)];
@@ -501,7 +505,7 @@ private:
       m_band_width.assign(m_chart.size(), 0.0);
     }
     std::vector<Chart_points> out(m_chart.size());
-    internal::parallel_for(m_chart.size(), m_threads, [&](std::size_t c) {
+    internal::parallel_for_dynamic(m_chart_order, m_threads, [&](std::size_t c) {
       const Chart& chart = m_chart[c];
       Chart_points& cp = out[c];
       if(m_band_width[c] == 0) {
@@ -534,7 +538,7 @@ private:
         build_band(c, m_band_width[c]);
       }
       internal::delaunay_neighbours(cp.dt.dt, cp.dt.handle, cp.start, cp.nbr);
-    }, 1);
+    });
     return out;
   }
 
@@ -543,6 +547,7 @@ private:
   const Cone_embedding* m_emb;
   unsigned m_threads = 1;
   std::vector<Chart> m_chart;
+  std::vector<std::size_t> m_chart_order;  // the charts by decreasing number of faces: the threads take the costliest first
   std::vector<std::size_t> m_slot;
   std::vector<char> m_is_cone;
   double m_total_mass = 0, m_tolerance = 0;

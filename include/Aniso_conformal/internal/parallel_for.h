@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_INTERNAL_PARALLEL_FOR_H
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <system_error>
@@ -74,6 +75,24 @@ void parallel_for(std::size_t n, unsigned threads, const Body& body, std::size_t
         for(std::size_t i = begin; i < end; ++i) body(i);
       },
       grain);
+}
+
+// calls body(order[k]) for every k in [0, order.size()) on up to `threads` threads (0: every core), each
+// thread taking the next k not yet taken: for bodies of very unequal cost (put the costliest first). As
+// with parallel_blocks(), a body that writes only the outputs of its own index gives results that do not
+// depend on the number of threads; an exception is rethrown here after every thread has stopped.
+template <typename Body>
+void parallel_for_dynamic(const std::vector<std::size_t>& order, unsigned threads, const Body& body)
+{
+  const std::size_t n = order.size();
+  const std::size_t nt = std::min<std::size_t>(resolve_thread_count(threads), n);
+  std::atomic<std::size_t> next{0};
+  parallel_blocks(
+      nt, unsigned(nt),
+      [&](std::size_t, std::size_t, std::size_t) {
+        for(std::size_t k = next++; k < n; k = next++) body(order[k]);
+      },
+      1);
 }
 
 } // namespace internal
