@@ -10,7 +10,6 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -25,19 +24,14 @@
 namespace Aniso_conformal {
 namespace internal {
 
-// runs work(0 .. chunks-1) on up to `threads` threads, each taking the next chunk not yet taken (the
-// chunks' costs differ); an exception thrown by a chunk is rethrown here (parallel_blocks())
+// runs work(0 .. chunks-1) on up to `threads` threads (0: one), each taking the next chunk not yet
+// taken (the chunks' costs differ): parallel_for_dynamic()
 template <typename Work>
-void run_chunks(unsigned threads, std::size_t chunks, Work& work)
+void run_chunks(unsigned threads, std::size_t chunks, const Work& work)
 {
-  const unsigned nt = std::min<unsigned>(std::max(1u, threads), unsigned(chunks));
-  std::atomic<std::size_t> next{0};
-  parallel_blocks(
-      nt, nt,
-      [&](std::size_t, std::size_t, std::size_t) {
-        for(std::size_t c = next++; c < chunks; c = next++) work(c);
-      },
-      1);
+  std::vector<std::size_t> order(chunks);
+  for(std::size_t c = 0; c < chunks; ++c) order[c] = c;
+  parallel_for_dynamic(order, std::max(1u, threads), work);
 }
 
 // Greedy walk on a Delaunay graph in CSR form (neighbours of i: nbr[start[i] .. start[i+1])) from

@@ -52,6 +52,14 @@ struct Delaunay_fans {
   std::vector<std::array<int, 3>> faces;
   std::vector<Eigen::Vector2d> centre;
   std::vector<double> radius;
+
+  // room for the triangles of a triangulation of about n points
+  void reserve_faces(std::size_t n)
+  {
+    faces.reserve(2 * n + 64);
+    centre.reserve(2 * n + 64);
+    radius.reserve(2 * n + 64);
+  }
 };
 
 namespace split_delaunay_detail {
@@ -223,9 +231,7 @@ void whole_delaunay_fans(const std::vector<Eigen::Vector2d>& pts, const Matters&
   Indexed_delaunay_2 d;
   d.build(pts);
   out = Delaunay_fans();
-  out.faces.reserve(2 * pts.size() + 64);
-  out.centre.reserve(2 * pts.size() + 64);
-  out.radius.reserve(2 * pts.size() + 64);
+  out.reserve_faces(pts.size());
   std::vector<unsigned char> flag(pts.size(), 0);
   split_delaunay_detail::test_faces(
       d.dt, pts, [](int) { return true; }, matters, [](const Eigen::Vector2d&, double) { return true; }, flag, out);
@@ -280,9 +286,7 @@ bool split_delaunay_fans(const std::vector<Eigen::Vector2d>& pts, double margin,
         in.emplace_back(Indexed_delaunay_2::K::Point_2(pts[i].x(), pts[i].y()), int(i));
     Indexed_delaunay_2::Triangulation dt;
     dt.insert(in.begin(), in.end());
-    H.faces.faces.reserve(2 * H.owned.size() + 64);
-    H.faces.centre.reserve(2 * H.owned.size() + 64);
-    H.faces.radius.reserve(2 * H.owned.size() + 64);
+    H.faces.reserve_faces(H.owned.size());
     // a circle inside the half-plane of the points held is empty; one that leaves it, if no point
     // outside the half-plane lies in it
     const auto trusted = [&](const Eigen::Vector2d& c, double r) {
