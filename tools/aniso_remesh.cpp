@@ -199,6 +199,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     std::printf("time         background %.3f s, total %.3f s (", background_seconds, background_seconds + result.total_seconds());
     for(int s = 0; s < AC::number_of_stages; ++s)
       std::printf("%s%s %.3f", s ? ", " : "", AC::stage_name(AC::Stage(s)), result.seconds[s]);
+    if(result.discarded_seconds > 0) std::printf("; runs thrown away %.3f", result.discarded_seconds);
     std::printf(")\n");
   }
   return 0;

@@ -16,6 +16,7 @@
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/remesh_in_domain.h>
 
+#include <chrono>
 #include <string>
 
 /// \file remesh.h
@@ -51,15 +52,18 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
 {
   std::string reason;
   double residual = 0;
+  const auto start = std::chrono::steady_clock::now();
   try {
     return remesh_in_domain<Domain>(surface, metric, result, np);
   } catch(const Convergence_failure& e) {
     reason = e.what();
     residual = e.residual();
   }
+  const double failed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result = Remeshing_result();
   try {
     Remeshed_surface out = remesh_in_domain<Cone_domain>(surface, metric, result, np);
+    result.discarded_seconds += failed_seconds;  // after the cone run, which starts from a fresh result
     result.domain_choice = std::string("cones, because the ") + domain_name(Domain::kind) + " failed: " + reason;
     return out;
   } catch(const Remeshing_failure& e) {

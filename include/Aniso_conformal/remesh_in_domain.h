@@ -453,6 +453,11 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   }
   std::string reason;
   std::size_t splits = 0;
+  // the wall time of a failed run is kept (Remeshing_result::discarded_seconds): each run starts from
+  // start.result and overwrites the stages' seconds
+  double discarded = 0;
+  auto since = [](std::chrono::steady_clock::time_point t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
+  auto t0 = std::chrono::steady_clock::now();
   try {
     Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits);
     result.crease_run = Crease_run::REFINED;
@@ -460,19 +465,24 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   } catch(const Remeshing_failure& e) {
     reason = e.what();
   }
+  discarded += since(t0);
   if(splits > 0) {
     vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
+    t0 = std::chrono::steady_clock::now();
     try {
       Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr);
       result.crease_run = Crease_run::INPUT_VERTICES;
+      result.discarded_seconds += discarded;
       return out;
     } catch(const Remeshing_failure&) {
     }
+    discarded += since(t0);
   }
   vis.on_stage_started(Stage::EDGE_LENGTHS);
   Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
   result.creases_not_followed = reason;
   result.crease_run = Crease_run::NOT_FOLLOWED;
+  result.discarded_seconds += discarded;
   return out;
 }
 

@@ -83,8 +83,9 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * G_min, G_avg, theta_min, %<30 before and after it);
  * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range,
  * and the domain's own figures from `r.domain_diagnostics`, written generically: a scalar, a vector or a
- * matrix as rows); `cvt` (method, iterations, energy per iteration); `seconds` (wall time per stage and
- * total). Real numbers have 10 significant digits; a non-finite one is `null`.
+ * matrix as rows); `cvt` (method, iterations, energy per iteration); `seconds` (wall time per stage of the
+ * run that stood, `discarded`: the runs thrown away, failed crease runs and the topology's own domain
+ * before the cone domain, and `total`, their sum). Real numbers have 10 significant digits; a non-finite one is `null`.
  */
 inline nlohmann::json report_json(const Remeshing_result& r)
 {
@@ -200,6 +201,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                                {"percent_below_30_after", report_number(so.percent_below_30_after)}};
   nlohmann::json& seconds = j["seconds"];
   for(int s = 0; s < number_of_stages; ++s) seconds[stage_name(Stage(s))] = report_number(r.seconds[s]);
+  seconds["discarded"] = report_number(r.discarded_seconds);
   seconds["total"] = report_number(r.total_seconds());
   return j;
 }
