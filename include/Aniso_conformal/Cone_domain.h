@@ -112,6 +112,10 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
     d.add("charts", double(traits.number_of_charts()), "planar charts of the atlas", true);
     if(emb.edge_splits > 0)
       d.add("edge_splits", double(emb.edge_splits), "edges split after a placement that flattened a triangle next to a hole's loop", true);
+    const std::size_t grown = traits.dual_statistics().grown_fans;
+    if(grown > 0)
+      d.add("dual_grown_fans", double(grown),
+            "sites of the dual re-starred over a region grown past a cone or a tangle (thin parts narrower than the site spacing)", true);
     char text[200];
     std::snprintf(text, sizeof(text),
                   "%zu cones of %.0f to %.0f degrees (%zu linearised, %zu Newton solves); area distortion %.1f (about %.3g with the "
@@ -119,6 +123,7 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
                   emb.cones.size(), lo, hi, emb.linearised_cones, emb.solves, std::exp(2 * emb.u_range), std::exp(2 * emb.start_u_range));
     d.summary = text;
     if(emb.edge_splits > 0) d.summary += "; " + std::to_string(emb.edge_splits) + " edges split (a triangle flattened next to a hole's loop)";
+    if(grown > 0) d.summary += "; dual: " + std::to_string(grown) + " sites re-starred at thin parts";
     return d;
   }
 };

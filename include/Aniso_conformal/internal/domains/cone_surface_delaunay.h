@@ -177,6 +177,17 @@ private:
     std::sort(nearest.begin(), nearest.end());
     for(const auto& p : nearest)
       if(fan_over_region(cluster, p.second)) return true;
+    // else that region grown by the faces across its border, once to three times, so that its border
+    // becomes a cycle of distinct sites: a thin part (a horn, a tail) narrower than the sites' spacing has
+    // one site near its tip whose only neighbour is the next site down, whose cell wraps around the tip
+    // (the cone's link a a b, b of degree 2); the star of b over the grown region joins it to the sites
+    // beyond, which a mesh of the tip needs (tried last: in the pass whose fans may double an edge)
+    for(int grow = 1; grow <= 3 && m_fan_doubling; ++grow)
+      for(const auto& p : nearest)
+        if(fan_over_region(cluster, p.second, grow)) {
+          ++m_stats.grown_fans;
+          return true;
+        }
     return false;
   }
 
@@ -185,7 +196,7 @@ private:
   // of points (not `inside`; distinct for a fan from `inside`); a fan from the border starts at a point
   // met once on it (the border may pass a point twice: a site whose cell wraps around a sharp cone, the
   // link a b a c of a cone) and no diagonal doubles an edge.
-  bool fan_over_region(const std::set<int>& cluster, int inside)
+  bool fan_over_region(const std::set<int>& cluster, int inside, int grow = 0)
   {
     std::set<int> region;
     for(int x : cluster)
@@ -194,6 +205,16 @@ private:
       const std::vector<int> si = spokes_of(inside);
       if(si.empty()) return false;
       for(int s : si) region.insert(s / 3);
+    }
+    for(int g = 0; g < grow; ++g) {  // the faces across the border added (the star from `inside` only)
+      if(inside < 0) return false;
+      std::vector<int> across;
+      for(int f : region)
+        for(int k = 0; k < 3; ++k) {
+          const int t = m_twin[std::size_t(3 * f + k)] / 3;
+          if(!region.count(t)) across.push_back(t);
+        }
+      region.insert(across.begin(), across.end());
     }
     // the border: halfedges of the region whose twin is outside it, walked as one cycle (around each
     // border point through the region's faces, so that a point met twice, a site whose cell wraps
@@ -316,6 +337,7 @@ private:
       left.swap(still);
     }
     // edges that join two sites twice
+    std::size_t restars = 0;
     for(std::size_t round = 0;; ++round) {
       std::map<std::pair<int, int>, std::vector<int>> edges;
       for(std::size_t h = 0; h < m_tail.size(); ++h)
@@ -351,11 +373,44 @@ private:
         }
       }
       m_stats.untangled += flipped;
-      if(repeated == 0) break;
-      if(flipped == 0 || round > 64)
-        throw Convergence_failure("dual mesh: " + std::to_string(repeated) +
-                                      " pairs of sites are joined twice around a cone of the cone surface (too few sites there)",
-                                  double(repeated));
+      // loops: an edge from a site to itself, around a cone merged into it (a site whose cell wraps around
+      // a thin part)
+      std::vector<int> tangled;
+      for(const auto& e : edges)
+        if(e.second.size() > 1 || e.first.first == e.first.second) tangled.insert(tangled.end(), {e.first.first, e.first.second});
+      if(tangled.empty()) break;
+      if(repeated > 0 && flipped > 0 && round <= 64) continue;
+      // stuck: the star of a site of a doubled edge or loop (all its faces) replaced by its star over that
+      // region grown across its border until the border is a cycle of distinct sites; its edges are then
+      // all new and simple, the border's unchanged, so each such replacement removes a tangle for good
+      // (their neighbours of degree 1 or 2 first: a site inside another's loop)
+      bool mended = false;
+      std::sort(tangled.begin(), tangled.end());
+      tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
+      std::vector<int> lonely;
+      for(int v : tangled)
+        for(int sp : spokes_of(v)) {
+          const int w = head(sp);
+          if(w != v && spokes_of(w).size() < 3 && std::find(lonely.begin(), lonely.end(), w) == lonely.end()) lonely.push_back(w);
+        }
+      tangled.insert(tangled.begin(), lonely.begin(), lonely.end());
+      for(int grow = 0; grow <= 3 && !mended && restars < 64; ++grow)
+        for(int v : tangled)
+          if(fan_over_region({}, v, grow)) {
+            mended = true;
+            ++restars;
+            ++m_stats.grown_fans;
+            break;
+          }
+      if(mended) {
+        round = 0;
+        continue;
+      }
+      const std::size_t loops = std::size_t(std::count_if(edges.begin(), edges.end(), [](const auto& e) { return e.first.first == e.first.second; }));
+      throw Convergence_failure("dual mesh: " + std::to_string(repeated) + " pairs of sites are joined twice" +
+                                    (loops ? " and " + std::to_string(loops) + " sites joined to themselves" : std::string()) +
+                                    " around a cone of the cone surface (too few sites there)",
+                                double(repeated + loops));
     }
     std::vector<std::array<std::size_t, 3>> out;
     for(std::size_t f = 0; f < m_alive.size(); ++f) {

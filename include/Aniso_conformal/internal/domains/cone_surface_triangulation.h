@@ -48,6 +48,7 @@ public:
     std::size_t removed = 0;          // flat vertices removed in step 3
     std::size_t collapsed = 0;        // vertices merged into a point in step 4 (cones, and flat ones step 3 left)
     std::size_t untangled = 0;        // edges flipped in step 4 because they joined two points joined already
+    std::size_t grown_fans = 0;       // step 4: cones replaced by a point's star over a region grown past their faces (thin parts)
   };
 
   /*
