@@ -173,6 +173,10 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::printf("features     crease run %s: creases not followed: the run with crease sites failed (%s); this output is the run "
                   "without them\n",
                   AC::crease_run_name(result.crease_run), result.creases_not_followed.c_str());
+    if(!result.corners_not_kept.empty())
+      std::printf("features     crease run %s: corners not kept either: the run with the corners as fixed sites failed (%s); this "
+                  "output is the run without any feature site, as with --no-features\n",
+                  AC::crease_run_name(result.crease_run), result.corners_not_kept.c_str());
     std::printf("quality      G_min %.4f  G_avg %.4f  theta_min %.2f  theta_avg %.2f  %%<30 %.3f\n", q.G_min, q.G_avg,
                 q.theta_min, q.theta_avg, q.percent_below_30);
     std::printf("metric edge  mean length %.4g, normalised length stddev %.3f, min %.3f, max %.3f\n",

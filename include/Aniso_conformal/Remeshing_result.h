@@ -25,7 +25,7 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMain
- * which of the runs of `remesh()` that follow the input's creases (issue 15) gave the output: up to three
+ * which of the runs of `remesh()` that follow the input's creases (issue 15) gave the output: up to four
  * runs from the background after stage 2's refinement (doc/manual.md, "Sharp features");
  * `crease_run_name()` spells each value as the JSON report and the tool's summary write it
  */
@@ -33,7 +33,8 @@ enum class Crease_run {
   NONE,            ///< "none": no crease curve to follow (none found, or `feature_angle(180)` without marked edges)
   REFINED,         ///< "refined": the first run, the crease sites on the crease pieces refined to a third of an output edge
   INPUT_VERTICES,  ///< "input-vertices": the first run failed; the crease sites on the background's own crease vertices, nothing split
-  NOT_FOLLOWED     ///< "not-followed": both runs with crease sites failed; the run without them (`Remeshing_result::creases_not_followed` says why)
+  NOT_FOLLOWED,    ///< "not-followed": both runs with crease sites failed; the run without them (`Remeshing_result::creases_not_followed` says why)
+  FEATURES_DROPPED ///< "features-dropped": in a closed domain the run without crease sites failed too, with the corners as fixed sites; the run without any feature site, as `feature_angle(180)` (`Remeshing_result::corners_not_kept` says why)
 };
 
 /*!
@@ -46,6 +47,7 @@ inline const char* crease_run_name(Crease_run r)
   case Crease_run::REFINED: return "refined";
   case Crease_run::INPUT_VERTICES: return "input-vertices";
   case Crease_run::NOT_FOLLOWED: return "not-followed";
+  case Crease_run::FEATURES_DROPPED: return "features-dropped";
   default: return "none";
   }
 }
@@ -114,6 +116,10 @@ struct Remeshing_result {
   /// if pieces were split or their refinement failed, the sites on the input's own crease vertices) failed, the first with this
   /// message (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)
   std::string creases_not_followed;
+  /// empty, or why no corner was kept either (`Crease_run::FEATURES_DROPPED`): the run with the corners as
+  /// fixed sites and no crease site failed with this message, and the output is that of the run without
+  /// any feature site
+  std::string corners_not_kept;
   /// how the domain was chosen when the automatic choice left the topology's own: "cones, because the
   /// sphere failed: <its reason>" (issue 16, item 5); empty otherwise
   std::string domain_choice;

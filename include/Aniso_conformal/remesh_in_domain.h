@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -427,7 +428,7 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   return out;
 }
 
-// The pipeline, following the creases, in up to three runs from the background kept after the refinement
+// The pipeline, following the creases, in up to four runs from the background kept after the refinement
 // of stage 2 (start_pipeline(), not recomputed; a failure before it is not retried):
 // 1. the crease pieces refined to a third of the output edge length (the crease sites then sit at about the
 //    spacing asked for);
@@ -437,8 +438,11 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
 //    input's embedding fail (test/data/cases/pillow_005.off at 150 vertices: the rim's midpoints, each
 //    joined to a fan of the rim's thin latitude strips, turned 89 triangles over on the sphere), while the
 //    background unsplit is the one the run without creases embeds;
-// 3. if that fails too: the run without creases, as before issue 15 item 2, whose result (or failure)
-//    stands, with the first run's reason in Remeshing_result::creases_not_followed.
+// 3. if that fails too: the run without creases, as before issue 15 item 2 (the corners still fixed
+//    sites), with the first run's reason in Remeshing_result::creases_not_followed; its result stands,
+//    or, in the plane or without corners, its failure;
+// 4. in a closed domain, if run 3 fails: the run without any feature site (Remeshing_result::
+//    corners_not_kept says why run 3 failed), whose result stands, or run 3's failure.
 // Remeshing_result::crease_run says which run stood.
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
@@ -479,9 +483,50 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
     discarded += since(t0);
   }
   vis.on_stage_started(Stage::EDGE_LENGTHS);
-  Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
+  constexpr bool closed = Domain::kind != Parametric_domain::PLANE;
+  if(!closed || start.features.corners.empty()) {
+    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
+    result.creases_not_followed = reason;
+    result.crease_run = Crease_run::NOT_FOLLOWED;
+    result.discarded_seconds += discarded;
+    return out;
+  }
+  t0 = std::chrono::steady_clock::now();
+  std::string corners_reason;
+  std::exception_ptr corners_failure;  // rethrown, type and all, if the run without feature sites fails too
+  try {
+    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, false, nullptr);
+    result.creases_not_followed = reason;
+    result.crease_run = Crease_run::NOT_FOLLOWED;
+    result.discarded_seconds += discarded;
+    return out;
+  } catch(const Remeshing_failure& e) {
+    corners_reason = e.what();
+    corners_failure = std::current_exception();
+  }
+  discarded += since(t0);
+  // 4. in a closed domain, the run without any feature site: three corners half an output edge apart can
+  // make a triangle that the surface optimisation, which moves no fixed vertex, cannot turn back (CGAL's
+  // man at 2000 and 3000 with the defaults: 1 inverted triangle left); the features are still measured
+  vis.on_stage_started(Stage::EDGE_LENGTHS);
+  Feature_graph features;
+  std::swap(features, start.features);
+  Remeshed_surface out;
+  try {
+    out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
+  } catch(const Remeshing_failure&) {
+    std::swap(features, start.features);
+    std::rethrow_exception(corners_failure);
+  }
+  std::swap(features, start.features);
+  const auto measure_start = std::chrono::steady_clock::now();
+  result.features = measure_features(surface, start.features, out.points, out.faces);
+  result.features.short_components_dropped = start.short_creases_dropped;
+  result.features.short_length_dropped = start.short_crease_length_dropped;
+  result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
   result.creases_not_followed = reason;
-  result.crease_run = Crease_run::NOT_FOLLOWED;
+  result.corners_not_kept = corners_reason;
+  result.crease_run = Crease_run::FEATURES_DROPPED;
   result.discarded_seconds += discarded;
   return out;
 }

@@ -72,7 +72,8 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * vertices, i.e. the anisotropy the mesh realises); `features`, only if the input has sharp features
  * (`r.features`, `Feature_report`: crease edges, curves and corners of the input, corners kept, crease length,
  * the length and share of it covered by output edges; `crease_run`, which run stood: `crease_run_name()` of
- * `r.crease_run`, "refined", "input-vertices", "not-followed" (with `creases_not_followed`) or "none"); `repairs`, only if the input was repaired on reading
+ * `r.crease_run`, "refined", "input-vertices", "not-followed" (with `creases_not_followed`), "features-dropped"
+ * (with `creases_not_followed` and `corners_not_kept`) or "none"); `repairs`, only if the input was repaired on reading
  * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
  * triangles they became, points welded and points left unwelded, duplicated faces removed, vertices of no face dropped, faces
  * reoriented, whether a closed surface was turned outward, whether a planar input was clockwise);
@@ -137,6 +138,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
   }
   if(j.contains("features")) j["features"]["crease_run"] = crease_run_name(r.crease_run);  // which run stood
   if(!r.creases_not_followed.empty()) j["features"]["creases_not_followed"] = r.creases_not_followed;
+  if(!r.corners_not_kept.empty()) j["features"]["corners_not_kept"] = r.corners_not_kept;
   if(r.crease_sites > 0) {  // absent: no crease site placed (no crease curve, or curves too short for one)
     j["features"]["crease_sites"] = r.crease_sites;
     j["features"]["crease_edges_recovered"] = r.crease_edges_recovered;
