@@ -813,7 +813,8 @@ BOOST_AUTO_TEST_CASE(creases_that_fail_twice_give_the_run_without_them)
   // cube_grid.off at 150 (its crease pieces are split: the second run differs from the first), the
   // embedding made to fail by the visitor: once, and the second run (crease sites on the input's
   // vertices) follows the creases; twice, and the third run, without creases (its corners kept), stands
-  // with the first run's reason; three times, and the failure is thrown
+  // with the first run's reason; three times, and the fourth, without any feature site, stands with the
+  // third's reason too; four times, and the third run's failure is thrown
   const AC::Input_surface in = read_case("cube_grid.off");
   const auto np = AC::parameters::number_of_vertices(std::size_t(150));
   Failing_embeddings once;
@@ -848,12 +849,32 @@ BOOST_AUTO_TEST_CASE(creases_that_fail_twice_give_the_run_without_them)
   BOOST_TEST_MESSAGE("cube_grid without its creases followed: " << r2.features.covered_share << " covered");
   BOOST_TEST(r2.features.covered_share < 0.5);
 
-  Failing_embeddings always;
-  always.failures = 3;
+  Failing_embeddings thrice;
+  thrice.failures = 3;
   AC::Remeshing_result r3;
-  BOOST_CHECK_THROW(AC::remesh_in_domain<AC::Spherical_domain>(in, AC::Uniform_metric(), r3, np.visitor(std::ref(always))),
-                    AC::Remeshing_failure);
-  BOOST_TEST(always.started[AC::Stage::EMBEDDING] == 3);
+  const AC::Remeshed_surface bare = AC::remesh_in_domain<AC::Spherical_domain>(in, AC::Uniform_metric(), r3, np.visitor(std::ref(thrice)));
+  BOOST_TEST(thrice.started[AC::Stage::EMBEDDING] == 4);
+  BOOST_TEST((r3.crease_run == AC::Crease_run::FEATURES_DROPPED));
+  BOOST_TEST(std::string(AC::crease_run_name(r3.crease_run)) == "features-dropped");
+  BOOST_TEST(r3.creases_not_followed == "injected failure 1");
+  BOOST_TEST(r3.corners_not_kept == "injected failure 3");
+  BOOST_TEST(AC::IO::report_json(r3).at("features").at("corners_not_kept") == "injected failure 3");
+  BOOST_TEST(r3.crease_sites == 0u);
+  BOOST_TEST(bare.points.size() == 150u);
+  BOOST_TEST(bare.fixed_vertices == 0u);   // no feature site at all
+  BOOST_TEST(r3.features.corners == 8u);   // the input's features, still measured on the output
+  BOOST_TEST(r3.discarded_seconds > 0);    // the three runs thrown away
+
+  Failing_embeddings always;
+  always.failures = 4;
+  AC::Remeshing_result r4;
+  try {
+    AC::remesh_in_domain<AC::Spherical_domain>(in, AC::Uniform_metric(), r4, np.visitor(std::ref(always)));
+    BOOST_ERROR("four failed runs must throw");
+  } catch(const AC::Remeshing_failure& e) {
+    BOOST_TEST(std::string(e.what()) == "injected failure 3");  // the run with the corners' failure, as it was
+  }
+  BOOST_TEST(always.started[AC::Stage::EMBEDDING] == 4);
 }
 
 BOOST_AUTO_TEST_CASE(a_crease_refinement_that_fails_keeps_its_split_count)

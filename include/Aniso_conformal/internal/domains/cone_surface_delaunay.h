@@ -33,7 +33,10 @@
 //     is triangulated again by ear clipping (Sharp, Soliman and Crane 2019, "Navigating intrinsic
 //     triangulations", section 4, remove a vertex), and the flips of 2 are made again;
 //  4. the cones left (and any vertex step 3 could not remove) are merged into their nearest point along
-//     an edge (an edge collapse, when the link condition holds), so the triangles join points only.
+//     an edge (an edge collapse, when the link condition holds), so the triangles join points only; what
+//     no collapse, fan or flip mends (a thin part narrower than the points' spacing: a point whose cell
+//     wraps around a tip, another inside its loop) is re-triangulated as one point's star over a region
+//     grown until its border is a cycle of distinct points.
 
 namespace Aniso_conformal {
 namespace internal {
@@ -380,29 +383,10 @@ private:
         if(e.second.size() > 1 || e.first.first == e.first.second) tangled.insert(tangled.end(), {e.first.first, e.first.second});
       if(tangled.empty()) break;
       if(repeated > 0 && flipped > 0 && round <= 64) continue;
-      // stuck: the star of a site of a doubled edge or loop (all its faces) replaced by its star over that
-      // region grown across its border until the border is a cycle of distinct sites; its edges are then
-      // all new and simple, the border's unchanged, so each such replacement removes a tangle for good
-      // (their neighbours of degree 1 or 2 first: a site inside another's loop)
-      bool mended = false;
-      std::sort(tangled.begin(), tangled.end());
-      tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
-      std::vector<int> lonely;
-      for(int v : tangled)
-        for(int sp : spokes_of(v)) {
-          const int w = head(sp);
-          if(w != v && spokes_of(w).size() < 3 && std::find(lonely.begin(), lonely.end(), w) == lonely.end()) lonely.push_back(w);
-        }
-      tangled.insert(tangled.begin(), lonely.begin(), lonely.end());
-      for(int grow = 0; grow <= 3 && !mended && restars < 64; ++grow)
-        for(int v : tangled)
-          if(fan_over_region({}, v, grow)) {
-            mended = true;
-            ++restars;
-            ++m_stats.grown_fans;
-            break;
-          }
+      // stuck: a tangled site's star taken again over a grown region (at most 64 times in all)
+      const bool mended = restars < 64 && restar_a_tangled_site(tangled);
       if(mended) {
+        ++restars;
         round = 0;
         continue;
       }
@@ -425,6 +409,31 @@ private:
       out.push_back(r);
     }
     return out;
+  }
+
+  // Stuck untangling: the star of one of the `tangled` sites (those of a doubled edge or loop: all its
+  // faces) replaced by its star over that region grown across its border until the border is a cycle of
+  // distinct sites (fan_over_region(), up to three layers); its edges are then all new and simple, the
+  // border's unchanged, so each such replacement removes a tangle for good. Their neighbours of degree 1
+  // or 2 are tried first (a site inside another's loop). false if none serves.
+  bool restar_a_tangled_site(std::vector<int> tangled)
+  {
+    std::sort(tangled.begin(), tangled.end());
+    tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
+    std::vector<int> lonely;
+    for(int v : tangled)
+      for(int sp : spokes_of(v)) {
+        const int w = head(sp);
+        if(w != v && spokes_of(w).size() < 3 && std::find(lonely.begin(), lonely.end(), w) == lonely.end()) lonely.push_back(w);
+      }
+    tangled.insert(tangled.begin(), lonely.begin(), lonely.end());
+    for(int grow = 0; grow <= 3; ++grow)
+      for(int v : tangled)
+        if(fan_over_region({}, v, grow)) {
+          ++m_stats.grown_fans;
+          return true;
+        }
+    return false;
   }
 
   // The flip of h's edge (a, b) to (c, d) without lengths (after the merges, only the combinatorics
