@@ -357,6 +357,17 @@ Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Fe
   return dual;
 }
 
+// The input's features (start.features) measured on the output `out` (Remeshing_result::features), the
+// time counted as the quality stage's
+inline void record_features(const Input_surface& surface, const Pipeline_start& start, const Remeshed_surface& out, Remeshing_result& result)
+{
+  const auto measure_start = std::chrono::steady_clock::now();
+  result.features = measure_features(surface, start.features, out.points, out.faces);
+  result.features.short_components_dropped = start.short_creases_dropped;
+  result.features.short_length_dropped = start.short_crease_length_dropped;
+  result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
+}
+
 // The pipeline from `start` (start_pipeline()) on its background `itri`: the rest of stage 2 (with
 // `follow_creases` the creases kept, crease_sites.h: with `crease_splits` their background pieces refined
 // first, the splits counted there; without it the crease sites on the background's own crease vertices),
@@ -420,11 +431,7 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
 
   // 6. quality in the metric, orientation against the input, topology and distance to the input
   measure_and_check_output(surface, metric, out, Domain::inverted_triangles_hint(), vis, result, options.number_of_threads);
-  const auto measure_start = std::chrono::steady_clock::now();
-  result.features = measure_features(surface, start.features, out.points, out.faces);
-  result.features.short_components_dropped = start.short_creases_dropped;
-  result.features.short_length_dropped = start.short_crease_length_dropped;
-  result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
+  record_features(surface, start, out, result);
   return out;
 }
 
@@ -519,11 +526,7 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
     std::rethrow_exception(corners_failure);
   }
   std::swap(features, start.features);
-  const auto measure_start = std::chrono::steady_clock::now();
-  result.features = measure_features(surface, start.features, out.points, out.faces);
-  result.features.short_components_dropped = start.short_creases_dropped;
-  result.features.short_length_dropped = start.short_crease_length_dropped;
-  result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
+  record_features(surface, start, out, result);
   result.creases_not_followed = reason;
   result.corners_not_kept = corners_reason;
   result.crease_run = Crease_run::FEATURES_DROPPED;
