@@ -393,7 +393,8 @@ BOOST_AUTO_TEST_CASE(the_cow_goes_to_cones_when_the_sphere_fails)
   BOOST_TEST(r.discarded_seconds > 0);
   double stages = 0;
   for(double x : r.seconds) stages += x;
-  BOOST_TEST(r.total_seconds() == stages + r.discarded_seconds);
+  // summed in another order than total_seconds() does: equal up to rounding, not bit for bit
+  BOOST_TEST(std::abs(r.total_seconds() - (stages + r.discarded_seconds)) <= 1e-9 * (1.0 + r.total_seconds()));
   BOOST_TEST(out.points.size() == n);
   BOOST_TEST(closed_manifold_genus(n, out.faces) == 0);
   BOOST_TEST(r.inverted_triangles == 0u);
