@@ -968,4 +968,95 @@ BOOST_AUTO_TEST_CASE(crowded_vertices_move_to_split_edges_and_no_figure_gets_wor
   BOOST_TEST(full.quality.theta_min >= r.quality.theta_min);
 }
 
+BOOST_AUTO_TEST_CASE(a_cap_between_three_crease_sites_is_split_across_its_long_edge)
+{
+  // A cap: three fixed crease sites all but on one line (a, c, b, the crease a -> c -> b kept), joined by
+  // the long edge a b that the CVT's dual put there (CGAL's dino at 3000 vertices: 175.5 degrees at c,
+  // theta_min 2.0). Its flip cannot be taken on a curved surface (the new edge leaves the input) and the
+  // midpoint of a b lies next to c, so a split there leaves the same needle. relocate_crowded_vertices()
+  // then splits it between c and the vertex d across a b (crowded_vertices.h). Here on a 12 x 12 planar
+  // grid (the cell at (2, 2) holds the cap), one free vertex crowded near (9, 9) to give.
+  const int n = 12;
+  std::vector<Eigen::Vector3d> in_pts;
+  std::vector<std::array<std::size_t, 3>> in_faces;
+  auto grid = [&](std::vector<Eigen::Vector3d>& pts, std::vector<std::array<std::size_t, 3>>& faces) {
+    pts.clear();
+    faces.clear();
+    for(int j = 0; j < n; ++j)
+      for(int i = 0; i < n; ++i) pts.emplace_back(double(i), double(j), 0.0);
+    auto id = [&](int i, int j) { return std::size_t(j * n + i); };
+    for(int j = 0; j + 1 < n; ++j)
+      for(int i = 0; i + 1 < n; ++i) {
+        faces.push_back({{id(i, j), id(i + 1, j), id(i + 1, j + 1)}});
+        faces.push_back({{id(i, j), id(i + 1, j + 1), id(i, j + 1)}});
+      }
+  };
+  grid(in_pts, in_faces);
+  const AC::Input_surface s(in_pts, in_faces);
+  // the output: the same grid, the vertex (3, 2) moved to c = (2.55, 2.45) next to the diagonal from
+  // a = (2, 2) to b = (3, 3), the vertex (9, 9) moved to (9.35, 9); a, c, b renumbered 0, 1, 2 (fixed)
+  AC::Remeshed_surface out;
+  grid(out.points, out.faces);
+  const std::size_t a = 2 * n + 2, c = 2 * n + 3, b = 3 * n + 3, crowded = 9 * n + 9;
+  out.points[c] = Eigen::Vector3d(2.55, 2.45, 0.0);
+  out.points[crowded] = Eigen::Vector3d(9.35, 9.0, 0.0);
+  out.points[3 * n + 2] = Eigen::Vector3d(1.6, 3.4, 0.0);  // d: (a, b, d) of angles 61, 61, 58 degrees
+  std::vector<std::size_t> order(out.points.size());
+  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::swap(order[0], order[a]);  // order[new] = old: a, c, b first
+  std::swap(order[1], order[std::size_t(std::find(order.begin(), order.end(), c) - order.begin())]);
+  std::swap(order[2], order[std::size_t(std::find(order.begin(), order.end(), b) - order.begin())]);
+  std::vector<std::size_t> new_of(order.size());
+  for(std::size_t i = 0; i < order.size(); ++i) new_of[order[i]] = i;
+  std::vector<Eigen::Vector3d> points(order.size());
+  for(std::size_t i = 0; i < order.size(); ++i) points[i] = out.points[order[i]];
+  out.points = points;
+  for(auto& f : out.faces)
+    for(auto& x : f) x = new_of[x];
+  for(const auto& p : out.points) out.surface_points.push_back(s.project(p));
+  out.fixed_vertices = 3;
+  out.kept_edges = {{{0, 1}}, {{1, 2}}};
+  const AC::Remeshed_surface dual = out;
+  const AC::Uniform_metric metric;
+  std::vector<Eigen::Matrix3d> Q(out.points.size(), Eigen::Matrix3d::Identity());
+  const AC::Quality_report before = AC::compute_mesh_quality(out.points, out.faces, Q, 1);
+  const AC::internal::Crowded_vertices_report moved =
+    AC::internal::relocate_crowded_vertices(s, metric, out, Q, AC::internal::planar_side(s), 1);
+  const AC::Quality_report after = AC::compute_mesh_quality(out.points, out.faces, Q, 1);
+  BOOST_TEST_MESSAGE("cap on a grid: theta_min " << before.theta_min << " -> " << after.theta_min << ", " << moved.moved << " moved");
+  BOOST_TEST_REQUIRE(moved.moved == 1u);
+  BOOST_TEST(before.theta_min < 6.0);  // the cap: 5.7 degrees at a and b
+  BOOST_TEST(after.theta_min > 11.0);   // measured 11.3: the triangle (1, 3), d, (2, 4) left by moving d
+  // the cap is gone, the crease edges and the fixed sites stay, the counts too
+  std::map<std::pair<std::size_t, std::size_t>, int> directed;
+  for(const auto& f : out.faces) {
+    std::array<std::size_t, 3> t = f;
+    std::sort(t.begin(), t.end());
+    BOOST_TEST(!(t[0] == 0 && t[1] == 1 && t[2] == 2));
+    for(int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+  }
+  BOOST_TEST(directed.count({0, 1}) + directed.count({1, 0}) == 2u);
+  BOOST_TEST(directed.count({1, 2}) + directed.count({2, 1}) == 2u);
+  BOOST_TEST(out.points.size() == dual.points.size());
+  BOOST_TEST(out.faces.size() == dual.faces.size());
+  for(std::size_t i = 0; i < 3; ++i) BOOST_TEST((out.points[i] == dual.points[i]));
+  // the new vertex is off the line a b (at the incentre of a, b, d), not at its midpoint
+  std::size_t changed = 0;
+  for(std::size_t i = 3; i < out.points.size(); ++i) {
+    if(out.points[i] == dual.points[i]) continue;
+    ++changed;
+    const Eigen::Vector3d& m = out.points[i];
+    // its triangles (where the cap was): measured 30.4 degrees at least (the midpoint of a b would give 5.7)
+    for(const auto& f : out.faces) {
+      if(f[0] != i && f[1] != i && f[2] != i) continue;
+      for(int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d u = out.points[f[(k + 1) % 3]] - out.points[f[k]], v = out.points[f[(k + 2) % 3]] - out.points[f[k]];
+        BOOST_TEST(std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / 3.14159265358979323846 > 29.0);
+      }
+    }
+    BOOST_TEST(std::abs(m.y() - m.x()) / std::sqrt(2.0) > 0.2);  // its distance to the line through a and b
+  }
+  BOOST_TEST(changed == 1u);
+}
+
 BOOST_AUTO_TEST_SUITE_END()  // features

@@ -86,9 +86,20 @@ public:
         std::sort(key.begin(), key.end());
         if(std::find(failed.begin(), failed.end(), key) != failed.end()) continue;
         Split split;  // with the new vertex numbered nv until a donor gives its number
-        // the split alone must do better than the triangles it replaces (the donors' stars are good)
-        if(!evaluate_split(a, b, nv, split) || !(split.after.angle_min >= split.before.angle_min + min_gain) ||
-           split.after.G_min < split.before.G_min) {
+        // the split alone must do better than the triangles it replaces (the donors' stars are good): at
+        // the edge's midpoint, else (a cap: its third vertex c all but on the edge, as between three crease
+        // sites, the midpoint next to c) the better of two points across the edge
+        auto good = [&](const Split& s) { return s.after.angle_min >= s.before.angle_min + min_gain && !(s.after.G_min < s.before.G_min); };
+        bool found = evaluate_split(a, b, nv, split, Split_point::MIDPOINT) && good(split);
+        if(!found)
+          for(Split_point where : {Split_point::ACROSS_MIDPOINT, Split_point::ACROSS_INCENTRE}) {
+            Split other;
+            if(evaluate_split(a, b, nv, other, where) && good(other) && (!found || other.after.angle_min > split.after.angle_min)) {
+              split = std::move(other);
+              found = true;
+            }
+          }
+        if(!found) {
           failed.push_back(key);
           continue;
         }
@@ -203,8 +214,13 @@ private:
     return near;
   }
 
-    // the split of edge (a, b) at its midpoint on the input, the new vertex numbered `m` (a number no
-    // vertex has): the faces (a, b, c) and (b, a, d) become (a, m, c), (m, b, c), (b, m, d), (m, a, d);
+    // where a split puts its vertex (then projected onto the input): the edge's midpoint; across the edge
+    // (for a cap), the midpoint of the two vertices opposite it or the incentre of the larger of its two
+    // triangles (its angles bisected)
+    enum class Split_point { MIDPOINT, ACROSS_MIDPOINT, ACROSS_INCENTRE };
+
+    // the split of edge (a, b) at `where` on the input, the new vertex numbered `m` (a number no vertex has):
+    // the faces (a, b, c) and (b, a, d) become (a, m, c), (m, b, c), (b, m, d), (m, a, d);
     // then edge flips that raise the smallest angle of their two triangles (Lawson's flips with the
     // max-min angle test, as after a point insertion in a Delaunay triangulation), among the faces at the
     // vertices of the faces at a and b, never of a kept or a boundary edge, never onto an edge that exists,
@@ -219,7 +235,7 @@ private:
       Eigen::Matrix3d Q = Eigen::Matrix3d::Zero();
     };
 
-  bool evaluate_split(std::size_t a, std::size_t b, std::size_t m, Split& out) const
+  bool evaluate_split(std::size_t a, std::size_t b, std::size_t m, Split& out, Split_point where) const
   {
     if(is_kept(a, b)) return false;
     std::vector<std::size_t> region;
@@ -243,13 +259,24 @@ private:
     };
     const std::size_t c = third(F[fab], a, b), d = third(F[fba], a, b);
     if(c == d) return false;
-    const Eigen::Vector3d mid = 0.5 * (mesh.points[a] + mesh.points[b]);
+    const bool across = where != Split_point::MIDPOINT;
+    Eigen::Vector3d mid = 0.5 * (mesh.points[a] + mesh.points[b]);
+    if(where == Split_point::ACROSS_MIDPOINT) mid = 0.5 * (mesh.points[c] + mesh.points[d]);
+    if(where == Split_point::ACROSS_INCENTRE) {
+      const Eigen::Vector3d &pa = mesh.points[a], &pb = mesh.points[b];
+      const Eigen::Vector3d& px = (pb - pa).cross(mesh.points[c] - pa).norm() >= (pb - pa).cross(mesh.points[d] - pa).norm() ? mesh.points[c] : mesh.points[d];
+      const double la = (px - pb).norm(), lb = (px - pa).norm(), lx = (pb - pa).norm();
+      if(!(la + lb + lx > 0)) return false;
+      mid = (la * pa + lb * pb + lx * px) / (la + lb + lx);
+    }
     Surface_point sp = surface.project(mid);
     if(surface.is_planar()) sp.position.z() = 0;
     if(!surface.is_planar()) {  // not onto another sheet of a thin part
       const Eigen::Vector3d n = surface.interpolated_normal(sp);
       if(!(n.dot(surface.interpolated_normal(mesh.surface_points[a])) > 0) ||
-         !(n.dot(surface.interpolated_normal(mesh.surface_points[b])) > 0))
+         !(n.dot(surface.interpolated_normal(mesh.surface_points[b])) > 0) ||
+         (across && (!(n.dot(surface.interpolated_normal(mesh.surface_points[c])) > 0) ||
+                     !(n.dot(surface.interpolated_normal(mesh.surface_points[d])) > 0))))
         return false;
     }
     const Eigen::Matrix3d Qm = symmetric_sqrt(metric.tensor(sp));
@@ -451,7 +478,9 @@ private:
 // orientation of a planar input (planar_side()). The thin triangles (smallest angle below 30 degrees in
 // the metric, none inverted) are taken worst first; for each, its longest edge in the metric is split
 // at its midpoint projected onto the input (not onto another sheet of a thin part: the projection's
-// normal must agree with the edge's ends'), then flipped around with the max-min angle test among the
+// normal must agree with the edge's ends'), or when that does not do (a cap, whose third vertex lies all
+// but on the edge) at the better of the midpoint of the two vertices opposite the edge and the incentre
+// of the larger of its two triangles (the normal there must agree with all four), then flipped around with the max-min angle test among the
 // faces at the vertices of the faces at its ends (evaluate_split, below). The split alone must raise
 // the smallest angle of the triangles it replaces by `min_gain` degrees without lowering their G_min;
 // then the donor: among the 4 x 32 free vertices inside with the shortest edges in the metric whose star
