@@ -259,25 +259,25 @@ private:
     };
     const std::size_t c = third(F[fab], a, b), d = third(F[fba], a, b);
     if(c == d) return false;
-    const bool across = where != Split_point::MIDPOINT;
-    Eigen::Vector3d mid = 0.5 * (mesh.points[a] + mesh.points[b]);
+    // across the edge: x, the apex of the larger of the triangles (a, b, c), (a, b, d)
+    const Eigen::Vector3d &pa = mesh.points[a], &pb = mesh.points[b];
+    const std::size_t x = (pb - pa).cross(mesh.points[c] - pa).norm() >= (pb - pa).cross(mesh.points[d] - pa).norm() ? c : d;
+    Eigen::Vector3d mid = 0.5 * (pa + pb);
     if(where == Split_point::ACROSS_MIDPOINT) mid = 0.5 * (mesh.points[c] + mesh.points[d]);
     if(where == Split_point::ACROSS_INCENTRE) {
-      const Eigen::Vector3d &pa = mesh.points[a], &pb = mesh.points[b];
-      const Eigen::Vector3d& px = (pb - pa).cross(mesh.points[c] - pa).norm() >= (pb - pa).cross(mesh.points[d] - pa).norm() ? mesh.points[c] : mesh.points[d];
+      const Eigen::Vector3d& px = mesh.points[x];
       const double la = (px - pb).norm(), lb = (px - pa).norm(), lx = (pb - pa).norm();
       if(!(la + lb + lx > 0)) return false;
       mid = (la * pa + lb * pb + lx * px) / (la + lb + lx);
     }
     Surface_point sp = surface.project(mid);
     if(surface.is_planar()) sp.position.z() = 0;
-    if(!surface.is_planar()) {  // not onto another sheet of a thin part
+    if(!surface.is_planar()) {  // not onto another sheet of a thin part: the normal there agrees with the
+      // edge's ends', or across the edge with x's (a cap's three vertices may lie on the rim of a thin fin,
+      // whose normals, averaged over both its sheets, tell neither)
       const Eigen::Vector3d n = surface.interpolated_normal(sp);
-      if(!(n.dot(surface.interpolated_normal(mesh.surface_points[a])) > 0) ||
-         !(n.dot(surface.interpolated_normal(mesh.surface_points[b])) > 0) ||
-         (across && (!(n.dot(surface.interpolated_normal(mesh.surface_points[c])) > 0) ||
-                     !(n.dot(surface.interpolated_normal(mesh.surface_points[d])) > 0))))
-        return false;
+      auto agrees = [&](std::size_t v) { return n.dot(surface.interpolated_normal(mesh.surface_points[v])) > 0; };
+      if(where == Split_point::MIDPOINT ? !(agrees(a) && agrees(b)) : !agrees(x)) return false;
     }
     const Eigen::Matrix3d Qm = symmetric_sqrt(metric.tensor(sp));
     if(!Qm.allFinite()) return false;
@@ -480,7 +480,7 @@ private:
 // at its midpoint projected onto the input (not onto another sheet of a thin part: the projection's
 // normal must agree with the edge's ends'), or when that does not do (a cap, whose third vertex lies all
 // but on the edge) at the better of the midpoint of the two vertices opposite the edge and the incentre
-// of the larger of its two triangles (the normal there must agree with all four), then flipped around with the max-min angle test among the
+// of the larger of its two triangles (the normal there must agree with that triangle's apex), then flipped around with the max-min angle test among the
 // faces at the vertices of the faces at its ends (evaluate_split, below). The split alone must raise
 // the smallest angle of the triangles it replaces by `min_gain` degrees without lowering their G_min;
 // then the donor: among the 4 x 32 free vertices inside with the shortest edges in the metric whose star
