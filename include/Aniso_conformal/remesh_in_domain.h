@@ -467,51 +467,42 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   // the wall time of a failed run is kept (Remeshing_result::discarded_seconds): each run starts from
   // start.result and overwrites the stages' seconds
   double discarded = 0;
-  auto since = [](std::chrono::steady_clock::time_point t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
-  auto t0 = std::chrono::steady_clock::now();
-  try {
-    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits);
-    result.crease_run = Crease_run::REFINED;
-    return out;
-  } catch(const Remeshing_failure& e) {
-    reason = e.what();
-  }
-  discarded += since(t0);
+  // one run: its output, or none when it fails (Remeshing_failure: its message into `why`, the exception
+  // into `failure`, when given; its wall time into `discarded`)
+  auto attempt = [&](const auto& run, std::string* why, std::exception_ptr* failure) -> std::optional<Remeshed_surface> {
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      return run();
+    } catch(const Remeshing_failure& e) {
+      if(why) *why = e.what();
+      if(failure) *failure = std::current_exception();
+    }
+    discarded += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return std::nullopt;
+  };
+  // the output of the run that stood, as `run`, with the time thrown away before it and, past the runs
+  // that follow the creases, why they did not stand (set here: each run starts from start.result)
+  auto stood = [&](Remeshed_surface&& out, Crease_run run) {
+    result.crease_run = run;
+    result.discarded_seconds += discarded;
+    if(run == Crease_run::NOT_FOLLOWED || run == Crease_run::FEATURES_DROPPED) result.creases_not_followed = reason;
+    return std::move(out);
+  };
+  if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits); }, &reason, nullptr))
+    return stood(std::move(*out), Crease_run::REFINED);
   if(splits > 0) {
     vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
-    t0 = std::chrono::steady_clock::now();
-    try {
-      Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr);
-      result.crease_run = Crease_run::INPUT_VERTICES;
-      result.discarded_seconds += discarded;
-      return out;
-    } catch(const Remeshing_failure&) {
-    }
-    discarded += since(t0);
+    if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr); }, nullptr, nullptr))
+      return stood(std::move(*out), Crease_run::INPUT_VERTICES);
   }
   vis.on_stage_started(Stage::EDGE_LENGTHS);
   constexpr bool closed = Domain::kind != Parametric_domain::PLANE;
-  if(!closed || start.features.corners.empty()) {
-    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
-    result.creases_not_followed = reason;
-    result.crease_run = Crease_run::NOT_FOLLOWED;
-    result.discarded_seconds += discarded;
-    return out;
-  }
-  t0 = std::chrono::steady_clock::now();
+  if(!closed || start.features.corners.empty())
+    return stood(finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr), Crease_run::NOT_FOLLOWED);
   std::string corners_reason;
   std::exception_ptr corners_failure;  // rethrown, type and all, if the run without feature sites fails too
-  try {
-    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, false, nullptr);
-    result.creases_not_followed = reason;
-    result.crease_run = Crease_run::NOT_FOLLOWED;
-    result.discarded_seconds += discarded;
-    return out;
-  } catch(const Remeshing_failure& e) {
-    corners_reason = e.what();
-    corners_failure = std::current_exception();
-  }
-  discarded += since(t0);
+  if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, false, nullptr); }, &corners_reason, &corners_failure))
+    return stood(std::move(*out), Crease_run::NOT_FOLLOWED);
   // 4. in a closed domain, the run without any feature site: three corners half an output edge apart can
   // make a triangle that the surface optimisation, which moves no fixed vertex, cannot turn back (CGAL's
   // man at 2000 and 3000 with the defaults: 1 inverted triangle left); the features are still measured
@@ -527,11 +518,8 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   }
   std::swap(features, start.features);
   record_features(surface, start, out, result);
-  result.creases_not_followed = reason;
   result.corners_not_kept = corners_reason;
-  result.crease_run = Crease_run::FEATURES_DROPPED;
-  result.discarded_seconds += discarded;
-  return out;
+  return stood(std::move(out), Crease_run::FEATURES_DROPPED);
 }
 
 } // namespace internal
