@@ -509,17 +509,13 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   vis.on_stage_started(Stage::EDGE_LENGTHS);
   Feature_graph features;
   std::swap(features, start.features);
-  Remeshed_surface out;
-  try {
-    out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
-  } catch(const Remeshing_failure&) {
-    std::swap(features, start.features);
-    std::rethrow_exception(corners_failure);
-  }
+  auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr); },
+                     nullptr, nullptr);
   std::swap(features, start.features);
-  record_features(surface, start, out, result);
+  if(!out) std::rethrow_exception(corners_failure);
+  record_features(surface, start, *out, result);
   result.corners_not_kept = corners_reason;
-  return stood(std::move(out), Crease_run::FEATURES_DROPPED);
+  return stood(std::move(*out), Crease_run::FEATURES_DROPPED);
 }
 
 } // namespace internal

@@ -480,8 +480,9 @@ private:
 // at its midpoint projected onto the input (not onto another sheet of a thin part: the projection's
 // normal must agree with the edge's ends'), or when that does not do (a cap, whose third vertex lies all
 // but on the edge) at the better of the midpoint of the two vertices opposite the edge and the incentre
-// of the larger of its two triangles (the normal there must agree with that triangle's apex), then flipped around with the max-min angle test among the
-// faces at the vertices of the faces at its ends (evaluate_split, below). The split alone must raise
+// of the larger of its two triangles (the normal there must agree with that triangle's apex), then
+// flipped around with the max-min angle test among the faces at the vertices of the faces at its ends
+// (evaluate_split, below). The split alone must raise
 // the smallest angle of the triangles it replaces by `min_gain` degrees without lowering their G_min;
 // then the donor: among the 4 x 32 free vertices inside with the shortest edges in the metric whose star
 // retriangulates without them (the polygon's triangulation with the largest smallest angle: the dynamic
