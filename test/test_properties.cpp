@@ -38,6 +38,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -618,6 +619,82 @@ BOOST_AUTO_TEST_CASE(inconsistent_orientation)
                         AC::IO::read_triangle_mesh(write_file("flipped.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 2 3\n"));
                       }),
                       "inconsistent orientation"));
+}
+
+// the faults of the faces and their edges as a scan of the faces one by one meets them (a face's own
+// faults, then its edges' in corner order): the specification `Input_surface` reports the first fault by
+std::string first_fault_by_scan(const Points& p, const Faces& f)
+{
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> directed;
+  for(std::size_t i = 0; i < f.size(); ++i) {
+    const auto& t = f[i];
+    for(int k = 0; k < 3; ++k)
+      if(t[k] >= p.size()) return "face " + std::to_string(i) + " refers to vertex";
+    if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return "face " + std::to_string(i) + " is degenerate (a repeated vertex)";
+    for(int k = 0; k < 3; ++k) {
+      const auto key = std::make_pair(t[k], t[(k + 1) % 3]);
+      const auto it = directed.find(key);
+      const std::string edge = "(" + std::to_string(key.first) + ", " + std::to_string(key.second) + ")";
+      if(it != directed.end())
+        return directed.count({key.second, key.first}) ? "edge " + edge + " is non-manifold"
+                                                         : "faces " + std::to_string(it->second) + " and " + std::to_string(i) +
+                                                             " have inconsistent orientation along edge " + edge;
+      directed.emplace(key, i);
+    }
+  }
+  return "";
+}
+
+// random faults in a grid (a flipped face, a third face on an edge, a repeated vertex, an index out of
+// range, a duplicated face, the faces shuffled): the first fault in face order is the one reported
+BOOST_AUTO_TEST_CASE(validation_reports_the_first_fault_in_face_order)
+{
+  std::mt19937 rng(21u);
+  int faulty = 0;
+  for(int trial = 0; trial < 300; ++trial) {
+    const AC::Input_surface grid = random_grid_disk(rng, 5 + int(rng() % 4), 5 + int(rng() % 4), trial % 2 == 1);
+    Points p = grid.points();
+    Faces f = grid.faces();
+    const int faults = 1 + int(rng() % 3);
+    for(int k = 0; k < faults; ++k) {
+      const std::size_t i = rng() % f.size();
+      switch(rng() % 5) {
+        case 0: std::swap(f[i][0], f[i][1]); break;  // flipped
+        case 1:                                        // a third face on the edge f[i][0] - f[i][1]
+          p.push_back(p[f[i][2]] + Eigen::Vector3d(0, 0, 1));
+          f.push_back({{f[i][1], f[i][0], p.size() - 1}});
+          break;
+        case 2: f.push_back({{f[i][0], f[i][1], f[i][0]}}); break;
+        case 3: f.push_back({{f[i][0], f[i][1], p.size() + 3}}); break;
+        default: f.push_back(f[i]); break;
+      }
+    }
+    std::shuffle(f.begin(), f.end(), rng);
+    const std::string expected = first_fault_by_scan(p, f);
+    if(expected.empty()) continue;
+    ++faulty;
+    const std::string m = invalid_input_message([&] { AC::Input_surface(p, f); });
+    BOOST_TEST(contains(m, expected), "trial " << trial << ": " << m << " / expected: " << expected);
+  }
+  BOOST_TEST(faulty > 250);
+}
+
+// the Euler characteristic and the boundary loops of valid inputs, against counts made independently
+BOOST_AUTO_TEST_CASE(topology_of_valid_inputs)
+{
+  std::mt19937 rng(22u);
+  for(int trial = 0; trial < 20; ++trial) {
+    const int nx = 3 + int(rng() % 6), ny = 3 + int(rng() % 6);
+    const AC::Input_surface s = random_grid_disk(rng, nx, ny, trial % 2 == 1);
+    std::set<std::pair<std::size_t, std::size_t>> edges;
+    for(const auto& t : s.faces())
+      for(int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+    BOOST_TEST(s.euler_characteristic() == int(s.number_of_vertices()) - int(edges.size()) + int(s.number_of_faces()));
+    BOOST_TEST(s.euler_characteristic() == 1);
+    BOOST_REQUIRE(s.boundary_loops().size() == 1u);
+    BOOST_TEST(s.boundary_loops()[0].size() == std::size_t(2 * (nx - 1) + 2 * (ny - 1)));
+    BOOST_TEST(s.boundary_loops()[0].front() == 0u);  // started at the smallest boundary vertex
+  }
 }
 
 BOOST_AUTO_TEST_CASE(non_symmetric_tensor_in_remesh)

@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Surface_point.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
+#include <Aniso_conformal/internal/directed_edges.h>
 #include <Aniso_conformal/internal/metric_gradation.h>
 #include <Aniso_conformal/internal/parallel_for.h>
 
@@ -19,7 +20,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -147,7 +147,7 @@ public:
     const unsigned threads = o.number_of_threads;
 
     // 1. normal-cycle curvature tensors, and the crease edges and vertices (dihedral angle above feature_angle)
-    const Directed_edges out(s);
+    const Directed_edges out(s.number_of_vertices(), s.faces(), s.number_of_faces());
     std::vector<Tensor> T;
     std::vector<double> area;
     std::vector<char> crease_edge, crease_vertex;
@@ -223,44 +223,7 @@ public:
 
 private:
   // the directed edges of the faces, by tail vertex (CSR), each list in face order: head, face on the left
-  struct Directed_edges {
-    static constexpr std::uint32_t none = std::uint32_t(-1);
-    std::vector<std::uint32_t> start, head, face;
-    explicit Directed_edges(const Input_surface& s)
-    {
-      const std::size_t n = s.number_of_vertices();
-      start.assign(n + 1, 0);
-      for(const auto& t : s.faces())
-        for(int k = 0; k < 3; ++k) ++start[t[k] + 1];
-      for(std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-      head.resize(start[n]);
-      face.resize(start[n]);
-      std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-      for(std::size_t f = 0; f < s.number_of_faces(); ++f) {
-        const auto& t = s.faces()[f];
-        for(int k = 0; k < 3; ++k) {
-          const std::uint32_t i = fill[t[k]]++;
-          head[i] = std::uint32_t(t[(k + 1) % 3]);
-          face[i] = std::uint32_t(f);
-        }
-      }
-      // by head within each tail, so that every edge is visited in the order of its ends
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> tmp;
-      for(std::size_t v = 0; v < n; ++v) {
-        tmp.clear();
-        for(std::uint32_t i = start[v]; i < start[v + 1]; ++i) tmp.emplace_back(head[i], face[i]);
-        std::sort(tmp.begin(), tmp.end());
-        for(std::uint32_t i = start[v]; i < start[v + 1]; ++i) std::tie(head[i], face[i]) = tmp[i - start[v]];
-      }
-    }
-    // the directed edge a -> b, or `none`
-    std::uint32_t find(std::size_t a, std::size_t b) const
-    {
-      for(std::uint32_t i = start[a]; i < start[a + 1]; ++i)
-        if(head[i] == b) return i;
-      return none;
-    }
-  };
+  typedef internal::Directed_edges<std::uint32_t> Directed_edges;
 
   // the k-rings of the smoothing (CSR): v first, then breadth-first over the neighbours in face order,
   // following only the edges (x, y) for which `usable(x, y)` holds

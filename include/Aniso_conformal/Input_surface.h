@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Surface_point.h>
+#include <Aniso_conformal/internal/directed_edges.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -257,11 +258,13 @@ private:
   std::string face_name(std::size_t f) const { return std::to_string(f < m_input_face.size() ? m_input_face[f] : f); }
   std::string edge_name(std::size_t a, std::size_t b) const { return "(" + vertex_name(a) + ", " + vertex_name(b) + ")"; }
 
+  typedef internal::Directed_edges<std::size_t> Directed_edges;
+
   void validate_and_build()
   {
-    const std::map<std::pair<std::size_t, std::size_t>, std::size_t> directed = check_faces();
+    const Directed_edges directed = check_faces();
     find_boundary_loops(directed);
-    check_vertex_manifoldness();
+    check_vertex_manifoldness(directed);
     check_connected();
     m_normals.assign(m_points.size(), Eigen::Vector3d::Zero());
     for(const Face& t : m_faces) {
@@ -271,11 +274,28 @@ private:
     for(auto& n : m_normals) n.normalize();
   }
 
-  // coordinates, indices, degenerate faces, orientation, non-manifold edges, isolated vertices; returns
-  // the directed edges (tail, head) -> face
-  std::map<std::pair<std::size_t, std::size_t>, std::size_t> check_faces()
+  // the fault of face `f` itself (an index out of range, a repeated vertex, zero area), or ""
+  std::string face_fault(std::size_t f) const
   {
+    const Face& t = m_faces[f];
     const std::size_t nv = m_points.size();
+    for(int k = 0; k < 3; ++k)
+      if(t[k] >= nv)
+        return "face " + face_name(f) + " refers to vertex " + std::to_string(t[k]) + ", but there are only " +
+               std::to_string(nv) + " vertices";
+    if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return "face " + face_name(f) + " is degenerate (a repeated vertex); remove it";
+    const double area2 = (m_points[t[1]] - m_points[t[0]]).cross(m_points[t[2]] - m_points[t[0]]).norm();
+    if(!(area2 > 1e-14 * m_diag * m_diag))
+      return "face " + face_name(f) + " is degenerate (zero area); remove it, or move its corners apart";
+    return std::string();
+  }
+
+  // coordinates, indices, degenerate faces, orientation, non-manifold edges, isolated vertices; returns
+  // the directed edges. The first fault in face order is reported (a face's own before its edges'), as a
+  // scan of the faces one by one would meet it; linear time but for the sort of each vertex's few edges.
+  Directed_edges check_faces()
+  {
+    const std::size_t nv = m_points.size(), nf = m_faces.size();
     if(nv == 0 || m_faces.empty()) throw Invalid_input("the input mesh is empty");
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     for(std::size_t i = 0; i < nv; ++i) {
@@ -285,95 +305,107 @@ private:
     }
     m_diag = (hi - lo).norm();
     m_planar = (lo.z() == 0 && hi.z() == 0);
-    std::vector<char> used(nv, 0);
-    std::map<std::pair<std::size_t, std::size_t>, std::size_t> directed;  // directed edge -> face
-    for(std::size_t f = 0; f < m_faces.size(); ++f) {
-      const Face& t = m_faces[f];
-      for(int k = 0; k < 3; ++k)
-        if(t[k] >= nv)
-          throw Invalid_input("face " + face_name(f) + " refers to vertex " + std::to_string(t[k]) +
-                              ", but there are only " + std::to_string(nv) + " vertices");
-      if(t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-        throw Invalid_input("face " + face_name(f) + " is degenerate (a repeated vertex); remove it");
-      double area2 = (m_points[t[1]] - m_points[t[0]]).cross(m_points[t[2]] - m_points[t[0]]).norm();
-      if(!(area2 > 1e-14 * m_diag * m_diag))
-        throw Invalid_input("face " + face_name(f) + " is degenerate (zero area); remove it, or move its corners apart");
-      for(int k = 0; k < 3; ++k) {
-        used[t[k]] = 1;
-        auto key = std::make_pair(t[k], t[(k + 1) % 3]);
-        auto it = directed.find(key);
-        if(it != directed.end()) {
-          if(directed.count(std::make_pair(key.second, key.first)))
-            throw Invalid_input("edge " + edge_name(key.first, key.second) +
-                                " is non-manifold (shared by more than two faces); split the mesh along it into surfaces "
-                                "and remesh them one at a time");
-          throw Invalid_input("faces " + face_name(it->second) + " and " + face_name(f) +
-                              " have inconsistent orientation along edge " + edge_name(key.first, key.second) +
-                              "; orient the faces consistently");
-        }
-        directed.emplace(key, f);
-      }
+    std::size_t first_bad = nf;  // the first face with a fault of its own
+    std::string bad_message;
+    for(std::size_t f = 0; f < nf && first_bad == nf; ++f) {
+      bad_message = face_fault(f);
+      if(!bad_message.empty()) first_bad = f;
     }
-    // (an edge in three or more faces necessarily repeats a direction, so it was caught above)
-    std::map<std::pair<std::size_t, std::size_t>, int> undirected;
-    for(const auto& d : directed)
-      ++undirected[std::minmax(d.first.first, d.first.second)];
-    for(std::size_t i = 0; i < nv; ++i)
-      if(!used[i]) throw Invalid_input("vertex " + vertex_name(i) + " belongs to no face; remove it");
-    m_euler = int(nv) - int(undirected.size()) + int(m_faces.size());
-    return directed;
+    // the directed edges of the faces before it: a repeated (tail, head) sits with its faces in face order
+    const Directed_edges d(nv, m_faces, first_bad);
+    // the earliest repeated direction in face order: the (face, corner) where a scan would meet it again
+    std::size_t rep_face = nf, rep_corner = 3, rep_first = 0, rep_tail = 0, rep_head = 0;
+    for(std::size_t v = 0; v < nv; ++v)
+      for(std::size_t i = d.start[v] + 1; i < d.start[v + 1]; ++i) {
+        if(d.head[i] != d.head[i - 1] || (i >= d.start[v] + 2 && d.head[i - 2] == d.head[i])) continue;
+        const Face& t = m_faces[d.face[i]];
+        const std::size_t corner = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+        if(std::make_pair(d.face[i], corner) < std::make_pair(rep_face, rep_corner)) {
+          rep_face = d.face[i];
+          rep_corner = corner;
+          rep_first = d.face[i - 1];
+          rep_tail = v;
+          rep_head = d.head[i];
+        }
+      }
+    if(rep_face < nf) {
+      // an edge in three or more faces necessarily repeats a direction: when the opposite direction was met
+      // before, the edge is non-manifold, otherwise two faces disagree on its orientation
+      bool reverse_before = false;
+      for(std::size_t i = d.start[rep_head]; i < d.start[rep_head + 1]; ++i)
+        reverse_before = reverse_before || (d.head[i] == rep_tail && d.face[i] < rep_face);
+      if(reverse_before)
+        throw Invalid_input("edge " + edge_name(rep_tail, rep_head) +
+                            " is non-manifold (shared by more than two faces); split the mesh along it into surfaces "
+                            "and remesh them one at a time");
+      throw Invalid_input("faces " + face_name(rep_first) + " and " + face_name(rep_face) +
+                          " have inconsistent orientation along edge " + edge_name(rep_tail, rep_head) +
+                          "; orient the faces consistently");
+    }
+    if(first_bad < nf) throw Invalid_input(bad_message);
+    for(std::size_t v = 0; v < nv; ++v)
+      if(d.start[v] == d.start[v + 1]) throw Invalid_input("vertex " + vertex_name(v) + " belongs to no face; remove it");
+    // undirected edges: the directed ones less one per pair of opposite directions
+    std::size_t pairs = 0;
+    for(std::size_t v = 0; v < nv; ++v)
+      for(std::size_t i = d.start[v]; i < d.start[v + 1]; ++i)
+        pairs += (v < d.head[i] && d.find(d.head[i], v) != Directed_edges::none);
+    m_euler = int(nv) - int(d.head.size() - pairs) + int(nf);
+    return d;
   }
 
-  // the boundary loops, each in the orientation of its faces; a vertex on the boundary twice is non-manifold
-  void find_boundary_loops(const std::map<std::pair<std::size_t, std::size_t>, std::size_t>& directed)
+  // the boundary loops, each in the orientation of its faces, started at their smallest vertex in turn; a
+  // vertex on the boundary twice is non-manifold
+  void find_boundary_loops(const Directed_edges& d)
   {
-    std::map<std::size_t, std::vector<std::size_t>> boundary_next;  // boundary halfedge tail -> heads
-    for(const auto& d : directed)
-      if(!directed.count(std::make_pair(d.first.second, d.first.first)))
-        // boundary edges run opposite to the face orientation on the outside; keep the face direction
-        boundary_next[d.first.first].push_back(d.first.second);
-    for(const auto& b : boundary_next)
-      if(b.second.size() > 1)
-        throw Invalid_input("vertex " + vertex_name(b.first) + " is non-manifold (it touches the boundary " +
-                            std::to_string(b.second.size()) + " times): " + split_vertex_advice);
-    std::map<std::size_t, char> visited;
-    for(const auto& b : boundary_next) {
-      if(visited.count(b.first)) continue;
+    const std::size_t nv = m_points.size(), none = Directed_edges::none;
+    // boundary halfedge tail -> its first head (boundary edges run opposite to the face orientation on the
+    // outside; keep the face direction)
+    std::vector<std::size_t> next(nv, none), count(nv, 0);
+    for(std::size_t v = 0; v < nv; ++v)
+      for(std::size_t i = d.start[v]; i < d.start[v + 1]; ++i)
+        if(d.find(d.head[i], v) == none) {
+          if(count[v]++ == 0) next[v] = d.head[i];
+        }
+    for(std::size_t v = 0; v < nv; ++v)
+      if(count[v] > 1)
+        throw Invalid_input("vertex " + vertex_name(v) + " is non-manifold (it touches the boundary " +
+                            std::to_string(count[v]) + " times): " + split_vertex_advice);
+    std::vector<char> visited(nv, 0);
+    for(std::size_t b = 0; b < nv; ++b) {
+      if(next[b] == none || visited[b]) continue;
       std::vector<std::size_t> loop;
-      std::size_t v = b.first;
-      while(!visited.count(v)) {
+      std::size_t v = b;
+      while(!visited[v]) {
         visited[v] = 1;
         loop.push_back(v);
-        auto it = boundary_next.find(v);
-        if(it == boundary_next.end()) break;
-        v = it->second.front();
+        if(next[v] == none) break;
+        v = next[v];
       }
       m_loops.push_back(loop);
     }
   }
 
   // vertex manifoldness: the faces around each vertex must form a single fan; two faces at v are
-  // neighbours when the vertex before v in one is the vertex after v in the other
-  void check_vertex_manifoldness()
+  // neighbours when the vertex before v in one is the vertex after v in the other (the directed edges out
+  // of v, sorted by head, give each face by the vertex after v)
+  void check_vertex_manifoldness(const Directed_edges& d)
   {
     const std::size_t nv = m_points.size();
-    std::vector<std::vector<std::size_t>> vfaces(nv);
-    for(std::size_t f = 0; f < m_faces.size(); ++f)
-      for(int k = 0; k < 3; ++k) vfaces[m_faces[f][k]].push_back(f);
+    std::vector<std::size_t> up;
     for(std::size_t v = 0; v < nv; ++v) {
-      const auto& fs = vfaces[v];
-      auto corner = [&](std::size_t f) { const Face& t = m_faces[f]; return t[0] == v ? 0 : (t[1] == v ? 1 : 2); };
-      std::map<std::size_t, std::size_t> by_next;  // vertex after v -> local face index
-      for(std::size_t i = 0; i < fs.size(); ++i) by_next[m_faces[fs[i]][(corner(fs[i]) + 1) % 3]] = i;
-      std::vector<std::size_t> up(fs.size());
+      const std::size_t b = d.start[v], n = d.start[v + 1] - b;
+      up.resize(n);
       std::iota(up.begin(), up.end(), 0);
       auto root = [&](std::size_t x) { while(up[x] != x) x = up[x] = up[up[x]]; return x; };
-      std::size_t fans = fs.size();
-      for(std::size_t i = 0; i < fs.size(); ++i) {
-        auto it = by_next.find(m_faces[fs[i]][(corner(fs[i]) + 2) % 3]);
-        if(it == by_next.end()) continue;
-        std::size_t a = root(i), b = root(it->second);
-        if(a != b) { up[a] = b; --fans; }
+      std::size_t fans = n;
+      for(std::size_t i = 0; i < n; ++i) {
+        const Face& t = m_faces[d.face[b + i]];
+        const std::size_t before = t[0] == v ? t[2] : (t[1] == v ? t[0] : t[1]);
+        const std::size_t j = d.find(v, before);
+        if(j == Directed_edges::none) continue;
+        std::size_t x = root(i), y = root(j - b);
+        if(x != y) { up[x] = y; --fans; }
       }
       if(fans != 1)
         throw Invalid_input("vertex " + vertex_name(v) + " is non-manifold (its faces form " + std::to_string(fans) +
