@@ -341,37 +341,62 @@ private:
       const std::uint32_t i = out.find(x, y);
       return i != out.none ? crease_edge[i] != 0 : crease_edge[out.find(y, x)] != 0;
     };
-    std::vector<Tensor> L(n), tmp(n);
+    // each vertex's tangent frame (t1, t2 = N x t1); L is kept in it as a symmetric 2 x 2 matrix (a, b, c):
+    // the tensors are tangent, so this is the 3 x 3 computation without its normal row and column
+    std::vector<Eigen::Vector3d> T1(n), T2(n);
+    std::vector<Eigen::Vector3d> L(n), tmp(n);
     std::vector<double> log_big(n), log_small(n);
     internal::parallel_for(n, threads, [&](std::size_t v) {
+      T1[v] = N[v].unitOrthogonal();
+      T2[v] = N[v].cross(T1[v]);
       Eigen::Vector2d l;
       Eigen::Matrix<double, 3, 2> E;
       tangent_eigen(M[v], N[v], l, E);  // both eigenvalues > 0 after `bounded`, l[0] the larger
       log_big[v] = 0.5 * std::log(l[0]);
       log_small[v] = 0.5 * std::log(l[1]);
-      L[v] = std::log(l[0]) * E.col(0) * E.col(0).transpose() + std::log(l[1]) * E.col(1) * E.col(1).transpose();
+      const Eigen::Vector2d e0(T1[v].dot(E.col(0)), T2[v].dot(E.col(0))), e1(T1[v].dot(E.col(1)), T2[v].dot(E.col(1)));
+      const double g0 = std::log(l[0]), g1 = std::log(l[1]);
+      L[v] = Eigen::Vector3d(g0 * e0.x() * e0.x() + g1 * e1.x() * e1.x(), g0 * e0.x() * e0.y() + g1 * e1.x() * e1.y(),
+                             g0 * e0.y() * e0.y() + g1 * e1.y() * e1.y());
     });
     const Rings ring(s, o.smoothing_rings, threads, usable);
     if(o.smoothing_iterations > 0) {
+      // L[w] is transported into v's tangent plane before it is averaged there (the rotation R taking N[w] to
+      // N[v]): averaging tensors of differently oriented tangent planes in space would leak their strong part
+      // into the normal and lose anisotropy. In the frames, R t1(w) = cos t1(v) + sin t2(v) and R t2(w) =
+      // N[v] x R t1(w): each ring entry's (cos, sin), the same in every round, computed once; (0, 0) for a
+      // folded neighbourhood (N[w].N[v] <= -0.5), whose tensor does not describe v and is not averaged.
+      std::vector<Eigen::Vector2d> rotation(ring.vertex.size());
+      std::vector<std::uint32_t> used(n);
+      internal::parallel_for(n, threads, [&](std::size_t v) {
+        std::uint32_t u = 0;
+        for(std::uint32_t r = ring.start[v]; r < ring.start[v + 1]; ++r) {
+          const std::size_t w = ring.vertex[r];
+          const Eigen::Vector3d k = N[w].cross(N[v]);
+          const double c = N[w].dot(N[v]);
+          if(c <= -0.5) {
+            rotation[r] = Eigen::Vector2d::Zero();
+            continue;
+          }
+          const Eigen::Vector3d kt = k.cross(T1[w]);
+          const Eigen::Vector3d q = T1[w] + kt + k.cross(kt) / (1 + c);
+          const Eigen::Vector2d cs_sn(T1[v].dot(q), T2[v].dot(q));
+          rotation[r] = cs_sn / cs_sn.norm();
+          ++u;
+        }
+        used[v] = u;  // v itself is always used
+      }, 512);
       for(int it = 0; it < o.smoothing_iterations; ++it) {
         internal::parallel_for(n, threads, [&](std::size_t v) {
-          Tensor acc = Tensor::Zero();
-          std::size_t used = 0;
+          Eigen::Vector3d acc = Eigen::Vector3d::Zero();
           for(std::uint32_t r = ring.start[v]; r < ring.start[v + 1]; ++r) {
-            const std::size_t w = ring.vertex[r];
-            // transport L[w] into v's tangent plane first: averaging tensors of differently oriented
-            // tangent planes in space would leak their strong part into the normal and lose anisotropy
-            const Eigen::Vector3d k = N[w].cross(N[v]);
-            const double c = N[w].dot(N[v]);
-            if(c <= -0.5) continue;  // folded neighbourhood: its tensor does not describe v
-            Tensor K;
-            K << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
-            const Tensor R = Tensor::Identity() + K + K * K / (1 + c);
-            acc += R * L[w] * R.transpose();
-            ++used;
+            const Eigen::Vector3d& m = L[ring.vertex[r]];
+            const double cs = rotation[r].x(), sn = rotation[r].y();
+            const double cc = cs * cs, ss = sn * sn, cn = cs * sn;
+            acc += Eigen::Vector3d(cc * m[0] - 2 * cn * m[1] + ss * m[2], cn * (m[0] - m[2]) + (cc - ss) * m[1],
+                                   ss * m[0] + 2 * cn * m[1] + cc * m[2]);
           }
-          const Tensor P = Tensor::Identity() - N[v] * N[v].transpose();
-          tmp[v] = P * (acc / double(used)) * P;  // v itself is always used
+          tmp[v] = acc / double(used[v]);
         }, 512);
         L.swap(tmp);
       }
@@ -395,12 +420,12 @@ private:
     internal::parallel_for(n, threads, [&](std::size_t v) {
       // the smoothed directions: the eigenvectors of L on the tangent plane, the larger eigenvalue's
       // taking the larger scale
-      const Eigen::Vector3d t1 = N[v].unitOrthogonal(), t2 = N[v].cross(t1);
-      Eigen::Matrix<double, 3, 2> B;
-      B.col(0) = t1;
-      B.col(1) = t2;
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(B.transpose() * (0.5 * (L[v] + L[v].transpose())) * B);
-      const Eigen::Vector3d d_small = B * es.eigenvectors().col(0), d_big = B * es.eigenvectors().col(1);
+      Eigen::Matrix2d l2;
+      l2 << L[v][0], L[v][1], L[v][1], L[v][2];
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+      es.computeDirect(l2);  // closed form: the iterative solver was a tenth of the metric's time
+      const Eigen::Vector3d d_small = T1[v] * es.eigenvectors()(0, 0) + T2[v] * es.eigenvectors()(1, 0);
+      const Eigen::Vector3d d_big = T1[v] * es.eigenvectors()(0, 1) + T2[v] * es.eigenvectors()(1, 1);
       const double big = std::exp(log_big[v]), small = std::exp(log_small[v]);
       M[v] = bounded(big * big * d_big * d_big.transpose() + small * small * d_small * d_small.transpose(), N[v],
                      floor_value, o.stretch_max);
@@ -454,7 +479,8 @@ private:
     Eigen::Matrix<double, 3, 2> B;
     B.col(0) = t1;
     B.col(1) = t2;
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(B.transpose() * (0.5 * (M + M.transpose())) * B);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+    es.computeDirect(B.transpose() * (0.5 * (M + M.transpose())) * B);  // closed form
     const int big = std::abs(es.eigenvalues()[0]) >= std::abs(es.eigenvalues()[1]) ? 0 : 1;
     lambda = Eigen::Vector2d(es.eigenvalues()[big], es.eigenvalues()[1 - big]);
     E.col(0) = B * es.eigenvectors().col(big);
