@@ -94,6 +94,7 @@ public:
   std::size_t number_of_triangles() const { return m_tri.size(); }
   const Background_triangle& triangle(std::size_t f) const { return m_tri[f]; }
   bool in_one_cell(std::size_t, int&) const { return false; }
+  bool in_cell_of(std::size_t, int) const { return false; }
   int walk_start(std::size_t, int previous) const { return previous; }  // the triangles are in Morton order
   Eigen::Vector3d walk_target(std::size_t f) const { return from_klein(m_tri[f].g); }  // inside T: see the kernel
   double distance(int s, const Eigen::Vector3d& y) const { return -minkowski_dot(m_points[std::size_t(s)], y); }

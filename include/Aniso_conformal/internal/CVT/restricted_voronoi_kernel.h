@@ -135,6 +135,9 @@ const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const s
  *   number_of_triangles()
  *   triangle(f)                        T in its 2D frame: corners T.p[0..2] (Eigen::Vector2d)
  *   in_one_cell(f, s)                  true (and s) if T is known to lie in s's cell, else false
+ *   in_cell_of(f, s)                   true only if no bisector of s with a Delaunay neighbour cuts T
+ *                                      (then T is added whole to s, as the clipping would; a shortcut:
+ *                                      false is always correct)
  *   walk_start(f, previous)            where the walk to T's nearest site starts (previous: the last
  *                                      walk's end in this chunk)
  *   walk_target(f), distance(s, y)     the point the walk approaches and the order of the sites'
@@ -168,8 +171,17 @@ void integrate_restricted_voronoi(const Policy& P, std::size_t ns, const std::ve
         P.add_whole(f, s, A[std::size_t(s)]);
         continue;
       }
+      // T inside the cell of the previous walk's end: the walk would stay there and no bisector cut T
+      if(P.in_cell_of(f, seed)) {
+        P.add_whole(f, seed, A[std::size_t(seed)]);
+        continue;
+      }
       const auto y = P.walk_target(f);
       seed = greedy_walk(P.walk_start(f, seed), start, nbr, [&](int i) { return P.distance(i, y); });
+      if(P.in_cell_of(f, seed)) {
+        P.add_whole(f, seed, A[std::size_t(seed)]);
+        continue;
+      }
       stack.assign(1, seed);
       stamp[std::size_t(seed)] = int(f);
       while(!stack.empty()) {

@@ -206,6 +206,7 @@ public:
     s = m_owner[std::size_t(v[0])];
     return s == m_owner[std::size_t(v[1])] && s == m_owner[std::size_t(v[2])];
   }
+  bool in_cell_of(std::size_t, int) const { return false; }  // in_one_cell() covers it
   int walk_start(std::size_t f, int) const { return m_owner[std::size_t(m_tri[f].v[0])]; }
   const Eigen::Vector3d& walk_target(std::size_t f) const { return m_tri[f].g; }
   double distance(int s, const Eigen::Vector3d& y) const { return -m_sites[std::size_t(s)].dot(y); }  // unit sites
