@@ -15,6 +15,8 @@
 // Every case runs in a child process of its own, so that its peak resident memory (getrusage of the
 // child) is its own; the table gives wall and CPU seconds, the peak and the peak per input vertex.
 
+#include "../tools/batch_memory.h"
+
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Curvature_metric.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
@@ -317,6 +319,7 @@ std::string isolated_row(const Case& c, int runs, bool& sane)
 
 int main(int argc, char** argv)
 {
+  aniso_remesh::keep_freed_memory();  // as the command-line tool does
   int runs = 3;
   bool quick = false, scaling = false, issue = false, cvt_threads = false;
   std::string output, only;

@@ -3,6 +3,7 @@
 //
 // aniso_remesh: the command-line front end of Aniso_conformal (see --help and the manual).
 
+#include "batch_memory.h"
 #include "command_line.h"
 
 #include <Aniso_conformal/Analytic_metric_2.h>
@@ -277,6 +278,7 @@ void print_error(const char* kind, const std::string& message)
 // wrong; 3 a valid input this version cannot remesh; 1 anything else (a bug, cancelled, out of memory).
 int main(int argc, char** argv)
 {
+  aniso_remesh::keep_freed_memory();
   try {
     return main_impl(argc, argv);
   } catch(const AC::Invalid_input& e) {
