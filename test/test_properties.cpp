@@ -657,7 +657,7 @@ BOOST_AUTO_TEST_CASE(validation_reports_the_first_fault_in_face_order)
     Faces f = grid.faces();
     const int faults = 1 + int(rng() % 3);
     for(int k = 0; k < faults; ++k) {
-      const std::size_t i = rng() % f.size();
+      const std::size_t i = rng() % grid.number_of_faces();  // an input face: its indices are in range
       switch(rng() % 5) {
         case 0: std::swap(f[i][0], f[i][1]); break;  // flipped
         case 1:                                        // a third face on the edge f[i][0] - f[i][1]
