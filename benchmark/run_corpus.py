@@ -10,7 +10,7 @@ totals.
 
     python3 benchmark/run_corpus.py --tool build/bin/aniso_remesh [--data DIR] [--vertices 2000]
                                     [--timeout 60] [--out benchmark/corpus.md] [--only NAME...]
-                                    [--metrics isotropic|curvature ...]
+                                    [--metrics isotropic|curvature ...] [--tool-args "--iterations 40"]
 
 --data is a folder holding CGAL's data/meshes/ files; without it the script unpacks
 /usr/share/doc/libcgal-dev/data.tar.gz (Debian package libcgal-demo: `apt-get install libcgal-demo`)
@@ -94,10 +94,10 @@ def data_dir(arg):
     return os.path.join(tmp.name, "data", "meshes"), tmp
 
 
-def run_one(tool, mesh, metric, n, seed, timeout, workdir):
+def run_one(tool, mesh, metric, n, seed, timeout, workdir, extra=()):
     base = os.path.join(workdir, os.path.basename(mesh) + "." + metric)
     cmd = [tool, "--input", mesh, *METRICS[metric], "--vertices", str(n), "--seed", str(seed), "--quiet",
-           "--output", base + ".off", "--report", base + ".json"]
+           "--output", base + ".off", "--report", base + ".json", *extra]
     start = time.monotonic()
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
@@ -131,6 +131,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(HERE, "corpus.md"))
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--metrics", nargs="*", choices=list(METRICS), help="run only these metrics (default: all)")
+    ap.add_argument("--tool-args", default="", help="more options for the tool, one string (e.g. \"--iterations 40\")")
     a = ap.parse_args()
     meshes, keep = data_dir(a.data)
     rows = read_list(a.list)
@@ -142,7 +143,7 @@ def main():
     for name, nv, nf, loops, genus in rows:
         for metric in metrics:
             rc, sec, err, rep, out = run_one(a.tool, os.path.join(meshes, name), metric, a.vertices, a.seed, a.timeout,
-                                             work.name)
+                                             work.name, a.tool_args.split())
             ok = False
             if rep is not None:
                 topo = topology_of_off(out)

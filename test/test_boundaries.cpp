@@ -218,8 +218,10 @@ BOOST_AUTO_TEST_CASE(plate_with_a_hole_not_star_shaped_keeps_both_loops)
 // corner at input vertex k, counted as a seam edge, and its splits were tagged as seam vertices although
 // they lie inside the surface, so loop sites were placed off the loop near the plate's and the tongue's
 // corners (up to 6e-3 of the diagonal) and the chain zigzagged (Intrinsic_triangulation::is_seam_piece()).
-// At 400 with 6 cells, a free site is still cut off with the tongue's tip into the patch and is moved
-// (remove_patch_triangles()); loop edges the dual misses are recovered by flips (recover_loop_edges(),
+// At 400 with 6 cells, a free site was still cut off with the tongue's tip into the patch and moved
+// (remove_patch_triangles()) while the initial sites were drawn by rho; drawn by rho^(1/2), the CVT
+// leaves none there (the count is printed, no longer asserted: no test input of ours reaches that
+// mending now); loop edges the dual misses are recovered by flips (recover_loop_edges(),
 // needed by CGAL's mech-holes-shark.off, benchmark/boundaries.md). Measured: G_avg 0.91, 0.91 and 0.89,
 // theta_min 32.6, 32.1 and 33.4 degrees.
 namespace {
@@ -240,7 +242,7 @@ BOOST_AUTO_TEST_CASE(plate_with_a_thin_tongue_into_its_hole_keeps_both_loops)
   }
   const AC::Input_surface shorter = make_plate_with_tongue(6);
   const AC::Remeshing_result r = check_remesh<AC::Spherical_domain>("plate tongue 6", shorter, 400);
-  BOOST_TEST(r.patch_sites_moved > 0u);
+  BOOST_TEST_MESSAGE("plate tongue 6 at 400: " << r.patch_sites_moved << " sites moved out of the patch");
   BOOST_TEST(r.quality.theta_min > 25.0);
 }
 

@@ -524,15 +524,18 @@ BOOST_AUTO_TEST_CASE(high_contrast_image_needs_repairs_and_intrinsic_flips)
 
 BOOST_AUTO_TEST_CASE(default_surface_optimization_lifts_thin_triangles)
 {
-  // The CVT's dual of the L-shaped plate under its swirling field, 150 vertices, has triangles below 30
-  // degrees (23.3 measured) and none inverted: the default REPAIR now runs the surface optimisation on
-  // it, whose max-min angle pass lifts them (35.4 measured) without lowering G_min or G_avg.
+  // The dual of the L-shaped plate under its swirling field, 150 vertices, of a CVT stopped after 5
+  // iterations has triangles below 30 degrees (24.2 measured) and none inverted: the default REPAIR runs
+  // the surface optimisation on it, whose max-min angle pass lifts them (30.9 measured) without lowering
+  // G_min or G_avg. (After 100 iterations the dual alone reaches 37.4 degrees since the initial sites
+  // follow the optimal density of sites; with sites drawn by rho it had 23.3.)
   const std::string cases = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/";
   const AC::Input_surface s = AC::IO::read_triangle_mesh(cases + "lshape8.off");
   const auto metric = AC::IO::read_metric_file(cases + "lshape8_swirl3.metric", s.number_of_vertices());
   AC::Remeshing_result off, r;
-  const auto dual = remesh_plane(s, metric, off, AC::parameters::number_of_vertices(std::size_t(150)).surface_optimization(AC::Surface_optimization::OFF));
-  const auto out = remesh_plane(s, metric, r, AC::parameters::number_of_vertices(std::size_t(150)));
+  const auto dual = remesh_plane(s, metric, off, AC::parameters::number_of_vertices(std::size_t(150)).number_of_iterations(5u)
+                                                   .surface_optimization(AC::Surface_optimization::OFF));
+  const auto out = remesh_plane(s, metric, r, AC::parameters::number_of_vertices(std::size_t(150)).number_of_iterations(5u));
   BOOST_TEST(dual.points.size() == 150u);
   BOOST_TEST(out.points.size() == 150u);
   BOOST_TEST(!off.surface_optimization.ran);
@@ -577,7 +580,8 @@ BOOST_AUTO_TEST_CASE(colour_image_reaches_the_angle_bar_with_the_surface_optimiz
   // sit across colour edges (theta_min 1.7 degrees); Surface_optimization::ALWAYS, whose max-min angle
   // pass then runs on every output, lifts them, and its second phase (vertices toward their ideal point in
   // the metric) raises G: measured theta_min 30.9, %<30 0, G_avg 0.909 (first phase only: 30.2, 0, 0.879;
-  // without the angle pass everywhere: 24.1, 0.19)
+  // without the angle pass everywhere: 24.1, 0.19). Since the initial sites follow the optimal density of
+  // sites, the dual's smallest angle is 9.5 degrees (1.7 before).
   const AC::IO::Image photo = AC::IO::read_image(data_dir + "/images/photo_chelsea_323.png");
   AC::Remeshing_result r;
   const auto out = remesh_plane(AC::make_image_background(photo), AC::Image_metric(photo, 0.1), r,
@@ -586,7 +590,7 @@ BOOST_AUTO_TEST_CASE(colour_image_reaches_the_angle_bar_with_the_surface_optimiz
   BOOST_TEST(out.points.size() == 3000u);
   BOOST_TEST(r.inverted_triangles == 0u);
   BOOST_TEST(r.surface_optimization.ran);
-  BOOST_TEST(r.surface_optimization.theta_min_before < 5.0);
+  BOOST_TEST(r.surface_optimization.theta_min_before < 20.0);
   BOOST_TEST(r.quality.theta_min > 26.0);
   BOOST_TEST(r.quality.percent_below_30 < 0.1);
   BOOST_TEST(r.quality.G_avg > 0.895);

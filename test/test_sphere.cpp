@@ -589,37 +589,32 @@ BOOST_AUTO_TEST_CASE(thin_closed_pillow_remeshes_at_few_and_many_vertices)
   }
 }
 
-BOOST_AUTO_TEST_CASE(coarse_blob_is_repaired_by_the_surface_optimization)
+BOOST_AUTO_TEST_CASE(coarse_blob_needs_no_repair_since_the_sites_start_at_their_optimal_density)
 {
-  // CGAL's blob-closed (140 vertices) to 2000, its sharp features not kept (feature_angle 180; with its 4
-  // corners fixed the dual has no inverted triangle): the dual mesh mapped back has an inverted triangle,
-  // which was refused; the surface optimisation (on by default to repair) flips and moves it right
+  // CGAL's blob-closed (140 vertices) to 2000, its sharp features not kept (feature_angle 180). With the
+  // initial sites drawn by rho = cf^2 the CVT had not undone their crowding where cf is large after 100
+  // iterations, and the dual mapped back had an inverted triangle (refused without the surface
+  // optimisation, repaired by it). Drawn by rho^(1/2), the sites' density at the CVT's optimum, the dual
+  // itself is valid and better: measured G_avg 0.939, theta_min 32.0 without any surface optimisation. (The
+  // repair of inverted triangles end to end: test_remesh, the CT slice at s = 0.5; on the sphere:
+  // test_stages, surface_optimization_on_a_sphere_keeps_the_mesh_on_it_and_repairs_a_fold.)
   const AC::Input_surface s = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/blob-closed.off");
   const std::size_t n = 2000;
-  AC::Remeshing_result r;
-  std::string refused;
-  try {
-    remesh_sphere(s, AC::Uniform_metric(), r,
-                  AC::parameters::number_of_vertices(n).feature_angle(180).surface_optimization(AC::Surface_optimization::OFF));
-  } catch(const AC::Convergence_failure& e) {
-    refused = e.what();
-  }
-  BOOST_TEST_MESSAGE("blob-closed without the surface optimisation: " << refused);
-  BOOST_TEST(refused.find("inverted") != std::string::npos);
+  AC::Remeshing_result off, r;
+  const AC::Remeshed_surface dual = remesh_sphere(
+      s, AC::Uniform_metric(), off, AC::parameters::number_of_vertices(n).feature_angle(180).surface_optimization(AC::Surface_optimization::OFF));
+  check_sphere_output(s, dual, n);
+  BOOST_TEST_MESSAGE("blob-closed, the dual: G_avg " << off.quality.G_avg << ", theta_min " << off.quality.theta_min
+                                                     << ", Hausdorff " << off.hausdorff_distance_relative);
+  BOOST_TEST(off.inverted_triangles == 0u);
+  BOOST_TEST(off.quality.G_avg > 0.92);
+  BOOST_TEST(off.quality.theta_min > 25.0);
+  BOOST_TEST(off.hausdorff_distance_relative < 0.01);
   const AC::Remeshed_surface out = remesh_sphere(s, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).feature_angle(180));
   check_sphere_output(s, out, n);
-  const AC::Surface_optimization_report& so = r.surface_optimization;
-  BOOST_TEST_MESSAGE("blob-closed: inverted " << so.inverted_before << " -> " << so.inverted_after << ", G_avg " << so.G_avg_before
-                     << " -> " << so.G_avg_after << ", theta_min " << so.theta_min_before << " -> " << so.theta_min_after << ", "
-                     << so.rounds << " rounds, " << r.seconds[int(AC::Stage::SURFACE_OPTIMIZATION)] << " s");
-  BOOST_TEST(so.ran);
-  BOOST_TEST(so.inverted_before > 0u);
-  BOOST_TEST(so.inverted_after == 0u);
   BOOST_TEST(r.inverted_triangles == 0u);
-  BOOST_TEST(so.G_avg_after == r.quality.G_avg);
-  BOOST_TEST(r.quality.G_avg > 0.85);
-  BOOST_TEST(r.quality.theta_min > so.theta_min_before);
-  BOOST_TEST(r.hausdorff_distance_relative < 0.02);
+  BOOST_TEST(r.quality.G_avg >= off.quality.G_avg - 1e-9);
+  BOOST_TEST(r.quality.theta_min >= off.quality.theta_min - 1e-9);
 }
 
 BOOST_AUTO_TEST_CASE(long_protrusions_are_refused_with_the_reason)

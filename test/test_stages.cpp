@@ -1043,6 +1043,33 @@ BOOST_AUTO_TEST_CASE(restricted_voronoi_shortcut_gives_the_clipped_integrals)
   BOOST_TEST(hits > tri.size() * 2 / 5);
 }
 
+// The initial sites are drawn by the density of sites at the CVT's optimum, rho^(1/2) in two dimensions
+// (Gersho), not by rho: on a square whose right half has 16 times the density of its left half, 4 of
+// every 5 sites start in the right half (by rho: 16 of every 17), which is where the CVT would take them.
+BOOST_AUTO_TEST_CASE(initial_sites_follow_the_optimal_density_of_sites)
+{
+  namespace I = AC::internal;
+  const Eigen::Vector2d a(0, 0), b(0.5, 0), c(1, 0), d(1, 1), e(0.5, 1), f(0, 1);
+  std::vector<I::Background_triangle> tri;
+  tri.push_back(I::make_background_triangle({{a, b, e}}, {{1.0, 1.0, 1.0}}, 0));
+  tri.push_back(I::make_background_triangle({{a, e, f}}, {{1.0, 1.0, 1.0}}, 1));
+  tri.push_back(I::make_background_triangle({{b, c, d}}, {{16.0, 16.0, 16.0}}, 2));
+  tri.push_back(I::make_background_triangle({{b, d, e}}, {{16.0, 16.0, 16.0}}, 3));
+  BOOST_TEST(std::abs(I::optimal_sampling_weight(tri[2]) - 4 * I::optimal_sampling_weight(tri[0])) < 1e-15);
+  for(unsigned seed : {0u, 1u, 2u}) {
+    std::mt19937_64 rng(seed);
+    const std::vector<Eigen::Vector2d> x = I::stratified_samples(tri, 1000, rng);
+    BOOST_REQUIRE(x.size() == 1000u);
+    std::size_t right = 0;
+    for(const Eigen::Vector2d& p : x) {
+      BOOST_TEST((p.x() > 0 && p.x() < 1 && p.y() > 0 && p.y() < 1));
+      if(p.x() > 0.5) ++right;
+    }
+    BOOST_TEST(right >= 799u);  // stratified: 800 up to the one random offset
+    BOOST_TEST(right <= 801u);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(conformal_flip_budget_is_enforced)
 {
   // a 30 x 30 grid sheared 4:1: its thin triangles are far from Delaunay, the first flip pass needs

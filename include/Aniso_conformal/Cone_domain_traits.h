@@ -179,8 +179,9 @@ public:
   /// \name Sites
   /// @{
   /*!
-   * places `n` sites spread over the density (stratified by mass over the charts' faces, uniformly inside
-   * a face; deterministic for a `seed`), each in the frame of its face's chart. None is fixed.
+   * places `n` sites spread by the sites' density at the CVT's optimum, `rho^(1/2)` (Gersho; stratified by
+   * `internal::optimal_sampling_weight()` over the charts' faces, uniformly inside a face; deterministic
+   * for a `seed`), each in the frame of its face's chart. None is fixed.
    * \throws Invalid_input if `n < 4` on genus 0, `n < 1` otherwise
    */
   std::vector<Point> initial_sites(std::size_t n, unsigned seed) { return initial_sites_after({}, n, seed); }
@@ -204,7 +205,7 @@ public:
     double total = 0;
     for(std::size_t c = 0; c < m_chart.size(); ++c)
       for(std::size_t i = 0; i < m_chart[c].tri.size(); ++i) {
-        total += m_chart[c].tri[i].mass;
+        total += internal::optimal_sampling_weight(m_chart[c].tri[i]);
         cumulative.push_back(total);
         slot.emplace_back(c, i);
       }

@@ -142,8 +142,9 @@ public:
   /// @{
 
   /*!
-   * places `n` sites spread over the density (stratified along a space-filling curve of the background
-   * triangles, `internal::stratified_samples()`; deterministic for a `seed`), in the fundamental cell.
+   * places `n` sites spread by the sites' density at the CVT's optimum, `rho^(1/2)` (Gersho; stratified
+   * along a space-filling curve of the background triangles, `internal::stratified_samples()`;
+   * deterministic for a `seed`), in the fundamental cell.
    * None is fixed.
    * \throws Invalid_input if `n < 1`
    */

@@ -210,7 +210,10 @@ public:
   {
     if(n < 1) throw Invalid_input("the hyperbolic domain needs at least one site");
     std::mt19937_64 rng(seed);
-    const std::vector<Eigen::Vector2d> k = internal::stratified_samples(m_tri, n, rng);
+    // m_tri's density is already the sites' optimal density (times the Klein area element): drawn by mass
+    const std::vector<Eigen::Vector2d> k = internal::stratified_samples(
+        m_tri.size(), [&](std::size_t f) { return m_tri[f].mass; },
+        [&](std::size_t f) -> const std::array<Eigen::Vector2d, 3>& { return m_tri[f].p; }, n, rng);
     std::vector<Point> sites;
     sites.reserve(n);
     for(const Eigen::Vector2d& q : k) sites.push_back(internal::from_klein(q));

@@ -165,8 +165,8 @@ public:
    * places `n` sites: the boundary sites first (fixed: `number_of_fixed_sites()` becomes their number) at
    * the spacing `n` implies for an equilateral mesh of the adjusted area, evenly in metric length between
    * corners, with sites added where their polygon would touch or cross itself; then `n - fixed` interior
-   * sites spread over the density (stratified along a space-filling curve, `internal::stratified_samples()`;
-   * deterministic for a `seed`), a sample that falls between the polygon of the boundary sites and the
+   * sites spread by the sites' density at the CVT's optimum, `rho^(1/2)` (Gersho; stratified along a
+   * space-filling curve, `internal::stratified_samples()`; deterministic for a `seed`), a sample that falls between the polygon of the boundary sites and the
    * domain's boundary moved just inside the polygon.
    * \throws Invalid_input if `n` is smaller than 3 or than the number of corners
    * \throws Remeshing_failure if the polygon of the boundary sites can only be made simple with more than
@@ -193,7 +193,7 @@ public:
     std::vector<Point> sites;
     for(const auto& b : m_boundary_sites) sites.push_back(boundary_point(b));
     build_site_polygon(sites);
-    // interior: stratified sampling of the density along the Morton curve of the background triangles
+    // interior: stratified sampling of rho^(1/2) along the Morton curve of the background triangles
     std::mt19937_64 rng(seed);
     std::vector<Point> inside = internal::stratified_samples(m_tri, n - sites.size(), rng);
     for(Point& p : inside)

@@ -178,8 +178,9 @@ public:
   /// @{
 
   /*!
-   * places `n` sites spread over the density: stratified along a space-filling curve of the chordal
-   * triangles (`internal::stratified_samples()`: evenly spaced quantiles of the mass, a random point in
+   * places `n` sites spread by the sites' density at the CVT's optimum, `rho^(1/2)` (Gersho): stratified
+   * along a space-filling curve of the chordal triangles (`internal::stratified_samples()`: evenly spaced
+   * quantiles of `internal::optimal_sampling_weight()`, a random point in
    * each chosen triangle), centrally projected onto the sphere; deterministic for a `seed`. None is fixed.
    * \throws Invalid_input if `n < 4` (the smallest triangulation of the sphere is the tetrahedron)
    */
@@ -189,7 +190,7 @@ public:
       throw Invalid_input("the sphere needs at least 4 sites (a tetrahedron), " + std::to_string(n) + " were requested");
     std::mt19937_64 rng(seed);
     std::vector<Point> sites = internal::stratified_samples(
-        m_tri.size(), [&](std::size_t f) { return m_tri[f].flat.mass; },
+        m_tri.size(), [&](std::size_t f) { return internal::optimal_sampling_weight(m_tri[f].flat); },
         [&](std::size_t f) -> const std::array<Eigen::Vector3d, 3>& { return m_tri[f].p; }, n, rng);
     for(Point& x : sites) x = x.normalized();
     return sites;

@@ -206,11 +206,24 @@ inline void integrate_restricted_voronoi(const std::vector<Background_triangle>&
                                out);
 }
 
-// m points spread over the density of the triangles `tri` (in Morton order): stratified_samples()
+// The weight of a background triangle when initial sites are drawn: the integral of rho^(1/2), the
+// sites' density at the optimum of a CVT of density rho in two dimensions (a cell's area goes as
+// rho^(-1/2): Gersho's conjecture; Du, Faber and Gunzburger 1999, SIAM Review 41(4), section 2.3), here
+// |area| times the mean of the corners' rho^(1/2). Drawn by rho itself, the sites start crowded where rho
+// is large (rho = cf^2: by the square of the area ratio) and the CVT spends its iterations moving them
+// out, slowly (the energy still fell 2 % per 5 L-BFGS iterations after 100 on CGAL's bear).
+inline double optimal_sampling_weight(const Background_triangle& T)
+{
+  return std::abs(T.area) * (std::sqrt(std::max(0.0, T.rho[0])) + std::sqrt(std::max(0.0, T.rho[1])) +
+                             std::sqrt(std::max(0.0, T.rho[2]))) / 3;
+}
+
+// m points spread over the triangles `tri` (in Morton order) by the sites' optimal density:
+// stratified_samples() weighted by optimal_sampling_weight()
 inline std::vector<Eigen::Vector2d> stratified_samples(const std::vector<Background_triangle>& tri, std::size_t m, std::mt19937_64& rng)
 {
   return stratified_samples(
-      tri.size(), [&](std::size_t f) { return tri[f].mass; },
+      tri.size(), [&](std::size_t f) { return optimal_sampling_weight(tri[f]); },
       [&](std::size_t f) -> const std::array<Eigen::Vector2d, 3>& { return tri[f].p; }, m, rng);
 }
 
