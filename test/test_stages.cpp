@@ -402,6 +402,58 @@ BOOST_AUTO_TEST_CASE(curvature_metric_gradation_bounds_the_size_ratio_along_ever
   }
   BOOST_TEST(refined > n / 20);
 
+  // the same bound on a surface with a boundary (a boundary edge has no twin: both of its ends must see
+  // each other as neighbours), CGAL's cylinder_locally_refined.off, an open tube
+  {
+    const AC::Input_surface tube = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/cylinder_locally_refined.off");
+    BOOST_TEST_REQUIRE(!tube.boundary_loops().empty());
+    AC::Curvature_metric_options ot;
+    ot.stretch_max = 5;
+    ot.gradation_vertices = 2000;
+    ot.gradation = 0;
+    const AC::Curvature_metric tube_off(tube, ot);
+    ot.gradation = 1.3;
+    const AC::Curvature_metric tube_graded(tube, ot);
+    const auto& TN = tube.vertex_normals();
+    auto tube_tangent = [&](const Eigen::Matrix3d& M, std::size_t v) {
+      Eigen::Matrix<double, 3, 2> B;
+      B.col(0) = TN[v].unitOrthogonal();
+      B.col(1) = TN[v].cross(B.col(0));
+      return Eigen::Matrix2d(B.transpose() * M * B);
+    };
+    std::vector<double> tube_area(tube.number_of_vertices(), 0.0);
+    std::set<std::pair<std::size_t, std::size_t>> tube_edges, directed;
+    for(const auto& t : tube.faces())
+      for(int k = 0; k < 3; ++k) {
+        tube_area[t[k]] += (tube.points()[t[1]] - tube.points()[t[0]]).cross(tube.points()[t[2]] - tube.points()[t[0]]).norm() / 6;
+        tube_edges.emplace(t[k], t[(k + 1) % 3]);
+        tube_edges.emplace(t[(k + 1) % 3], t[k]);
+        directed.emplace(t[k], t[(k + 1) % 3]);
+      }
+    double tube_metric_area = 0;
+    for(std::size_t v = 0; v < tube.number_of_vertices(); ++v)
+      tube_metric_area += tube_area[v] * std::sqrt(tube_tangent(tube_off.tensors()[v], v).determinant());
+    const double tube_scale = 2000 * std::sqrt(3.0) / 2 / tube_metric_area;
+    double w = 0, w_boundary = 0;
+    std::size_t boundary_edges = 0;
+    for(const auto& e : tube_edges) {
+      const Eigen::Vector3d d = tube.points()[e.second] - tube.points()[e.first];
+      const double l = std::sqrt(tube_scale * d.dot(tube_graded.tensors()[e.first] * d));
+      const double h_i = std::pow(tube_tangent(tube_graded.tensors()[e.first], e.first).determinant(), -0.25);
+      const double h_j = std::pow(tube_tangent(tube_graded.tensors()[e.second], e.second).determinant(), -0.25);
+      const double r = h_j / h_i / (1 + (ot.gradation - 1) * l);
+      w = std::max(w, r);
+      if(!directed.count(e) || !directed.count({e.second, e.first})) {
+        ++boundary_edges;
+        w_boundary = std::max(w_boundary, r);
+      }
+    }
+    BOOST_TEST_MESSAGE("cylinder_locally_refined: size growth over the allowed one " << w << ", on the " << boundary_edges
+                                                                                      << " directed boundary edges " << w_boundary);
+    BOOST_TEST(boundary_edges > 0u);
+    BOOST_TEST(w <= 1.001);
+  }
+
   for(double bad : {1.0, 0.5, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
     o.gradation = bad;
     BOOST_TEST(invalid_input_message([&] { AC::Curvature_metric(s, o); }).find("gradation") != std::string::npos);

@@ -201,7 +201,7 @@ public:
     // 4. gradation (Borouchaki, Hecht and Frey 1998) along the edges, in the field scaled to
     // `gradation_vertices` unit edges; only ever refines; the floor and the stretch bound kept
     if(o.gradation > 1 && std::isfinite(o.gradation)) {
-      grade(s, o, floor_value / median, M);
+      grade(s, out, o, floor_value / median, M);
       internal::parallel_for(n, threads, [&](std::size_t v) {
         Eigen::Vector2d l;
         Eigen::Matrix<double, 3, 2> E;
@@ -436,31 +436,34 @@ private:
 
   // stage 4 of the constructor: the gradation of `M` (already scaled) along the edges of `s`, the metric
   // lengths those of `M` scaled to an area of `gradation_vertices * sqrt(3) / 2`
-  static void grade(const Input_surface& s, const Curvature_metric_options& o, double floor_value, std::vector<Tensor>& M)
+  static void grade(const Input_surface& s, const Directed_edges& out, const Curvature_metric_options& o, double floor_value,
+                    std::vector<Tensor>& M)
   {
     const std::size_t n = s.number_of_vertices();
     const auto& N = s.vertex_normals();
     const auto& P = s.points();
     // the metric area: sum over the vertices of a third of their faces' area times sqrt(det) on the tangent plane
     std::vector<double> area(n, 0.0);
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-    edges.reserve(6 * s.number_of_faces());
     for(const auto& t : s.faces()) {
       const double a = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).norm() / 6;
-      for(int k = 0; k < 3; ++k) {
-        area[t[k]] += a;
-        edges.emplace_back(std::uint32_t(t[k]), std::uint32_t(t[(k + 1) % 3]));
-        edges.emplace_back(std::uint32_t(t[(k + 1) % 3]), std::uint32_t(t[k]));
-      }
+      for(int k = 0; k < 3; ++k) area[t[k]] += a;
     }
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-    std::vector<std::uint32_t> start(n + 1, 0), adj(edges.size());
-    for(std::size_t k = 0; k < edges.size(); ++k) {
-      ++start[edges[k].first + 1];
-      adj[k] = edges[k].second;
-    }
+    // the neighbours of each vertex, sorted: the heads of its directed edges (sorted, one each on a
+    // manifold) and the tails of the boundary edges into it (no edge back), in linear time from `out`
+    std::vector<std::uint32_t> start(n + 1, 0), adj;
+    for(std::size_t v = 0; v < n; ++v) start[v + 1] = out.start[v + 1] - out.start[v];
+    for(std::size_t v = 0; v < n; ++v)
+      for(std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i)
+        if(out.find(out.head[i], v) == Directed_edges::none) ++start[std::size_t(out.head[i]) + 1];
     for(std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    adj.resize(start[n]);
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for(std::size_t v = 0; v < n; ++v)
+      for(std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i) {
+        adj[fill[v]++] = out.head[i];
+        if(out.find(out.head[i], v) == Directed_edges::none) adj[fill[out.head[i]]++] = std::uint32_t(v);
+      }
+    for(std::size_t v = 0; v < n; ++v) std::sort(adj.begin() + std::ptrdiff_t(start[v]), adj.begin() + std::ptrdiff_t(start[v + 1]));
     double metric_area = 0;
     for(std::size_t v = 0; v < n; ++v) {
       Eigen::Vector2d l;
