@@ -339,6 +339,61 @@ BOOST_AUTO_TEST_CASE(curvature_metric_does_not_smooth_across_a_crease)
   BOOST_TEST(invalid_input_message([&] { AC::Curvature_metric(s, o); }).find("feature_angle") != std::string::npos);
 }
 
+namespace {
+
+// a metric tensor of the input (3 x 3) restricted to the tangent plane at vertex v (2 x 2, in a basis of the
+// plane orthogonal to the vertex normal)
+Eigen::Matrix2d tangent_tensor(const AC::Input_surface& s, const Eigen::Matrix3d& M, std::size_t v)
+{
+  const Eigen::Vector3d& n = s.vertex_normals()[v];
+  Eigen::Matrix<double, 3, 2> B;
+  B.col(0) = n.unitOrthogonal();
+  B.col(1) = n.cross(B.col(0));
+  return B.transpose() * M * B;
+}
+
+// How far a curvature metric exceeds the gradation bound: along every edge (both directions), the growth
+// of the mean size h = det^(-1/4) on the tangent plane (rotation-invariant) over the allowed
+// eta = 1 + (gradation - 1) l, l the edge's metric length at the documented scale (the ungraded field's
+// area made vertices * sqrt(3) / 2); the largest over all edges and over the boundary edges
+struct Gradation_excess
+{
+  double all = 0, boundary = 0;
+  std::size_t boundary_edges = 0;  // directed
+};
+
+Gradation_excess gradation_excess(const AC::Input_surface& s, const AC::Curvature_metric& ungraded,
+                                  const AC::Curvature_metric& m, double gradation, std::size_t vertices)
+{
+  std::vector<double> area(s.number_of_vertices(), 0.0);
+  std::set<std::pair<std::size_t, std::size_t>> directed;
+  for(const auto& t : s.faces())
+    for(int k = 0; k < 3; ++k) {
+      area[t[k]] += (s.points()[t[1]] - s.points()[t[0]]).cross(s.points()[t[2]] - s.points()[t[0]]).norm() / 6;
+      directed.emplace(t[k], t[(k + 1) % 3]);
+    }
+  double metric_area = 0;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v)
+    metric_area += area[v] * std::sqrt(tangent_tensor(s, ungraded.tensors()[v], v).determinant());
+  const double scale = double(vertices) * std::sqrt(3.0) / 2 / metric_area;
+  auto h = [&](std::size_t v) { return std::pow(tangent_tensor(s, m.tensors()[v], v).determinant(), -0.25); };
+  Gradation_excess w;
+  for(const auto& d : directed)
+    for(const auto& e : {d, std::make_pair(d.second, d.first)}) {
+      const Eigen::Vector3d x = s.points()[e.second] - s.points()[e.first];
+      const double l = std::sqrt(scale * x.dot(m.tensors()[e.first] * x));
+      const double r = h(e.second) / h(e.first) / (1 + (gradation - 1) * l);
+      w.all = std::max(w.all, r);
+      if(!directed.count({d.second, d.first})) {  // no twin: a boundary edge, seen from both of its ends
+        ++w.boundary_edges;
+        w.boundary = std::max(w.boundary, r);
+      }
+    }
+  return w;
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_CASE(curvature_metric_gradation_bounds_the_size_ratio_along_every_edge)
 {
   // CGAL's part.off: 175 vertices, a machined part of flat faces and sharp creases, where the metric
@@ -356,46 +411,15 @@ BOOST_AUTO_TEST_CASE(curvature_metric_gradation_bounds_the_size_ratio_along_ever
   o.gradation = 1.3;  // MMG's default
   const AC::Curvature_metric graded(s, o);
 
-  // the documented scale of the metric lengths: the ungraded field's area made 2000 * sqrt(3) / 2
-  const auto& N = s.vertex_normals();
-  auto tangent = [&](const Eigen::Matrix3d& M, std::size_t v) {
-    Eigen::Matrix<double, 3, 2> B;
-    B.col(0) = N[v].unitOrthogonal();
-    B.col(1) = N[v].cross(B.col(0));
-    return Eigen::Matrix2d(B.transpose() * M * B);
-  };
-  std::vector<double> area(n, 0.0);
-  std::set<std::pair<std::size_t, std::size_t>> edges;
-  for(const auto& t : s.faces())
-    for(int k = 0; k < 3; ++k) {
-      area[t[k]] += (s.points()[t[1]] - s.points()[t[0]]).cross(s.points()[t[2]] - s.points()[t[0]]).norm() / 6;
-      edges.emplace(t[k], t[(k + 1) % 3]);
-      edges.emplace(t[(k + 1) % 3], t[k]);
-    }
-  double metric_area = 0;
-  for(std::size_t v = 0; v < n; ++v) metric_area += area[v] * std::sqrt(tangent(off.tensors()[v], v).determinant());
-  const double scale = 2000 * std::sqrt(3.0) / 2 / metric_area;
-  // the mean size h = det^(-1/4) on the tangent plane (rotation-invariant) grows by at most
-  // eta = 1 + (gradation - 1) l along an edge of metric length l (up to the iteration's tolerance 1e-3)
-  auto worst = [&](const AC::Curvature_metric& m) {
-    double w = 0;
-    for(const auto& e : edges) {
-      const Eigen::Vector3d d = s.points()[e.second] - s.points()[e.first];
-      const double l = std::sqrt(scale * d.dot(m.tensors()[e.first] * d));
-      const double h_i = std::pow(tangent(m.tensors()[e.first], e.first).determinant(), -0.25);
-      const double h_j = std::pow(tangent(m.tensors()[e.second], e.second).determinant(), -0.25);
-      w = std::max(w, h_j / h_i / (1 + (o.gradation - 1) * l));
-    }
-    return w;
-  };
-  const double before = worst(off), after = worst(graded);
+  // (up to the iteration's tolerance 1e-3)
+  const double before = gradation_excess(s, off, off, 1.3, 2000).all, after = gradation_excess(s, off, graded, 1.3, 2000).all;
   BOOST_TEST_MESSAGE("part.off, size growth over the allowed one: " << before << " without gradation, " << after << " with 1.3");
   BOOST_TEST(before > 1.5);  // the crease jumps the gradation is for
   BOOST_TEST(after <= 1.001);
   // it only refines, and keeps the stretch bound
   std::size_t refined = 0;
   for(std::size_t v = 0; v < n; ++v) {
-    const Eigen::Matrix2d a = tangent(off.tensors()[v], v), b = tangent(graded.tensors()[v], v);
+    const Eigen::Matrix2d a = tangent_tensor(s, off.tensors()[v], v), b = tangent_tensor(s, graded.tensors()[v], v);
     BOOST_TEST(AC::internal::metric_excess(b, a) <= 1 + 1e-9);
     if(AC::internal::metric_excess(a, b) > 1.01) ++refined;
     BOOST_TEST((graded.stretch_ratios()[v] >= 1 - 1e-12 && graded.stretch_ratios()[v] <= o.stretch_max + 1e-9));
@@ -404,55 +428,16 @@ BOOST_AUTO_TEST_CASE(curvature_metric_gradation_bounds_the_size_ratio_along_ever
 
   // the same bound on a surface with a boundary (a boundary edge has no twin: both of its ends must see
   // each other as neighbours), CGAL's cylinder_locally_refined.off, an open tube
-  {
-    const AC::Input_surface tube = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/cylinder_locally_refined.off");
-    BOOST_TEST_REQUIRE(!tube.boundary_loops().empty());
-    AC::Curvature_metric_options ot;
-    ot.stretch_max = 5;
-    ot.gradation_vertices = 2000;
-    ot.gradation = 0;
-    const AC::Curvature_metric tube_off(tube, ot);
-    ot.gradation = 1.3;
-    const AC::Curvature_metric tube_graded(tube, ot);
-    const auto& TN = tube.vertex_normals();
-    auto tube_tangent = [&](const Eigen::Matrix3d& M, std::size_t v) {
-      Eigen::Matrix<double, 3, 2> B;
-      B.col(0) = TN[v].unitOrthogonal();
-      B.col(1) = TN[v].cross(B.col(0));
-      return Eigen::Matrix2d(B.transpose() * M * B);
-    };
-    std::vector<double> tube_area(tube.number_of_vertices(), 0.0);
-    std::set<std::pair<std::size_t, std::size_t>> tube_edges, directed;
-    for(const auto& t : tube.faces())
-      for(int k = 0; k < 3; ++k) {
-        tube_area[t[k]] += (tube.points()[t[1]] - tube.points()[t[0]]).cross(tube.points()[t[2]] - tube.points()[t[0]]).norm() / 6;
-        tube_edges.emplace(t[k], t[(k + 1) % 3]);
-        tube_edges.emplace(t[(k + 1) % 3], t[k]);
-        directed.emplace(t[k], t[(k + 1) % 3]);
-      }
-    double tube_metric_area = 0;
-    for(std::size_t v = 0; v < tube.number_of_vertices(); ++v)
-      tube_metric_area += tube_area[v] * std::sqrt(tube_tangent(tube_off.tensors()[v], v).determinant());
-    const double tube_scale = 2000 * std::sqrt(3.0) / 2 / tube_metric_area;
-    double w = 0, w_boundary = 0;
-    std::size_t boundary_edges = 0;
-    for(const auto& e : tube_edges) {
-      const Eigen::Vector3d d = tube.points()[e.second] - tube.points()[e.first];
-      const double l = std::sqrt(tube_scale * d.dot(tube_graded.tensors()[e.first] * d));
-      const double h_i = std::pow(tube_tangent(tube_graded.tensors()[e.first], e.first).determinant(), -0.25);
-      const double h_j = std::pow(tube_tangent(tube_graded.tensors()[e.second], e.second).determinant(), -0.25);
-      const double r = h_j / h_i / (1 + (ot.gradation - 1) * l);
-      w = std::max(w, r);
-      if(!directed.count(e) || !directed.count({e.second, e.first})) {
-        ++boundary_edges;
-        w_boundary = std::max(w_boundary, r);
-      }
-    }
-    BOOST_TEST_MESSAGE("cylinder_locally_refined: size growth over the allowed one " << w << ", on the " << boundary_edges
-                                                                                      << " directed boundary edges " << w_boundary);
-    BOOST_TEST(boundary_edges > 0u);
-    BOOST_TEST(w <= 1.001);
-  }
+  const AC::Input_surface tube = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/cylinder_locally_refined.off");
+  BOOST_TEST_REQUIRE(!tube.boundary_loops().empty());
+  o.gradation = 0;
+  const AC::Curvature_metric tube_off(tube, o);
+  o.gradation = 1.3;
+  const Gradation_excess w = gradation_excess(tube, tube_off, AC::Curvature_metric(tube, o), 1.3, 2000);
+  BOOST_TEST_MESSAGE("cylinder_locally_refined: size growth over the allowed one " << w.all << ", on the "
+                     << w.boundary_edges << " directed boundary edges " << w.boundary);
+  BOOST_TEST(w.boundary_edges > 0u);
+  BOOST_TEST(w.all <= 1.001);
 
   for(double bad : {1.0, 0.5, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
     o.gradation = bad;
@@ -1110,7 +1095,7 @@ BOOST_AUTO_TEST_CASE(initial_sites_follow_the_optimal_density_of_sites)
   BOOST_TEST(std::abs(I::optimal_sampling_weight(tri[2]) - 4 * I::optimal_sampling_weight(tri[0])) < 1e-15);
   for(unsigned seed : {0u, 1u, 2u}) {
     std::mt19937_64 rng(seed);
-    const std::vector<Eigen::Vector2d> x = I::stratified_samples(tri, 1000, rng);
+    const std::vector<Eigen::Vector2d> x = I::optimally_stratified_samples(tri, 1000, rng);
     BOOST_REQUIRE(x.size() == 1000u);
     std::size_t right = 0;
     for(const Eigen::Vector2d& p : x) {

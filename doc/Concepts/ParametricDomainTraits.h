@@ -74,9 +74,10 @@ public:
   /// @{
 
   /*!
-   * returns `n` initial sites spread over the density, deterministic for a `seed`: the models sample
-   * the background triangles' mass by evenly spaced quantiles along a space-filling curve with one
-   * random offset (`internal::stratified_samples()`), and a planar domain first places its fixed
+   * returns `n` initial sites spread by the sites' density at the CVT's optimum, `rho^(1/2)` for a
+   * density `rho` (Gersho), deterministic for a `seed`: the models sample the background triangles'
+   * integrals of `rho^(1/2)` by evenly spaced quantiles along a space-filling curve with one random
+   * offset (`internal::stratified_samples()`), and a planar domain first places its fixed
    * boundary sites. Non-const: it decides which (leading) sites are fixed, so call it before
    * `number_of_fixed_sites()`; a closed domain fixes none.
    * \throws Aniso_conformal::Invalid_input if `n` is too small for the domain (fewer than 3 or than the

@@ -451,18 +451,19 @@ private:
     // the neighbours of each vertex, sorted: the heads of its directed edges (sorted, one each on a
     // manifold) and the tails of the boundary edges into it (no edge back), in linear time from `out`
     std::vector<std::uint32_t> start(n + 1, 0), adj;
-    for(std::size_t v = 0; v < n; ++v) start[v + 1] = out.start[v + 1] - out.start[v];
-    for(std::size_t v = 0; v < n; ++v)
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary;  // (tail, head) of the edges with no twin
+    for(std::size_t v = 0; v < n; ++v) {
+      start[v + 1] = out.start[v + 1] - out.start[v];
       for(std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i)
-        if(out.find(out.head[i], v) == Directed_edges::none) ++start[std::size_t(out.head[i]) + 1];
+        if(out.find(out.head[i], v) == Directed_edges::none) boundary.emplace_back(std::uint32_t(v), out.head[i]);
+    }
+    for(const auto& b : boundary) ++start[std::size_t(b.second) + 1];
     for(std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
     adj.resize(start[n]);
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for(std::size_t v = 0; v < n; ++v)
-      for(std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i) {
-        adj[fill[v]++] = out.head[i];
-        if(out.find(out.head[i], v) == Directed_edges::none) adj[fill[out.head[i]]++] = std::uint32_t(v);
-      }
+      for(std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i) adj[fill[v]++] = out.head[i];
+    for(const auto& b : boundary) adj[fill[b.second]++] = b.first;
     for(std::size_t v = 0; v < n; ++v) std::sort(adj.begin() + std::ptrdiff_t(start[v]), adj.begin() + std::ptrdiff_t(start[v + 1]));
     double metric_area = 0;
     for(std::size_t v = 0; v < n; ++v) {

@@ -143,7 +143,7 @@ public:
 
   /*!
    * places `n` sites spread by the sites' density at the CVT's optimum, `rho^(1/2)` (Gersho; stratified
-   * along a space-filling curve of the background triangles, `internal::stratified_samples()`;
+   * along a space-filling curve of the background triangles, `internal::optimally_stratified_samples()`;
    * deterministic for a `seed`), in the fundamental cell.
    * None is fixed.
    * \throws Invalid_input if `n < 1`
@@ -152,7 +152,7 @@ public:
   {
     if(n < 1) throw Invalid_input("the flat torus needs at least one site");
     std::mt19937_64 rng(seed);
-    std::vector<Point> sites = internal::stratified_samples(m_tri, n, rng);
+    std::vector<Point> sites = internal::optimally_stratified_samples(m_tri, n, rng);
     for(Point& p : sites) p = wrap(p);
     return sites;
   }

@@ -166,8 +166,9 @@ public:
    * the spacing `n` implies for an equilateral mesh of the adjusted area, evenly in metric length between
    * corners, with sites added where their polygon would touch or cross itself; then `n - fixed` interior
    * sites spread by the sites' density at the CVT's optimum, `rho^(1/2)` (Gersho; stratified along a
-   * space-filling curve, `internal::stratified_samples()`; deterministic for a `seed`), a sample that falls between the polygon of the boundary sites and the
-   * domain's boundary moved just inside the polygon.
+   * space-filling curve, `internal::optimally_stratified_samples()`; deterministic for a `seed`), a sample
+   * that falls between the polygon of the boundary sites and the domain's boundary moved just inside the
+   * polygon.
    * \throws Invalid_input if `n` is smaller than 3 or than the number of corners
    * \throws Remeshing_failure if the polygon of the boundary sites can only be made simple with more than
    *         `n` sites (a boundary far more convoluted than `n` vertices can follow)
@@ -195,7 +196,7 @@ public:
     build_site_polygon(sites);
     // interior: stratified sampling of rho^(1/2) along the Morton curve of the background triangles
     std::mt19937_64 rng(seed);
-    std::vector<Point> inside = internal::stratified_samples(m_tri, n - sites.size(), rng);
+    std::vector<Point> inside = internal::optimally_stratified_samples(m_tri, n - sites.size(), rng);
     for(Point& p : inside)
       if(!inside_site_polygon(p)) p = pull_inside_site_polygon(p);
     sites.insert(sites.end(), inside.begin(), inside.end());

@@ -220,7 +220,8 @@ inline double optimal_sampling_weight(const Background_triangle& T)
 
 // m points spread over the triangles `tri` (in Morton order) by the sites' optimal density:
 // stratified_samples() weighted by optimal_sampling_weight()
-inline std::vector<Eigen::Vector2d> stratified_samples(const std::vector<Background_triangle>& tri, std::size_t m, std::mt19937_64& rng)
+inline std::vector<Eigen::Vector2d> optimally_stratified_samples(const std::vector<Background_triangle>& tri, std::size_t m,
+                                                                 std::mt19937_64& rng)
 {
   return stratified_samples(
       tri.size(), [&](std::size_t f) { return optimal_sampling_weight(tri[f]); },
