@@ -4,6 +4,7 @@
 // Runs the paper's Table 1 cases available in this version, times every stage (median of several runs)
 // and writes a Markdown table with the quality figures next to the paper's numbers.
 // Usage: bench_paper [--runs R] [--threads T] [--output FILE.md] [--only TEXT] [--quick | --scaling | --issue | --cvt-threads]
+//        bench_paper --cones [--budget B] [--max-cones K] model.off ...   (cone_placement_rows.h)
 //   --only TEXT: only the cases whose name contains TEXT;
 //   --quick: one small case, checked against loose bounds (the CTest smoke run of this harness);
 //   --scaling: the Table 2 cyclide at growing input sizes (26k, 104k, 415k, 1.66M vertices, 8000 output) and
@@ -16,6 +17,7 @@
 // child) is its own; the table gives wall and CPU seconds, the peak and the peak per input vertex.
 
 #include "../tools/batch_memory.h"
+#include "cone_placement_rows.h"
 
 #include <Aniso_conformal/Analytic_metric_2.h>
 #include <Aniso_conformal/Curvature_metric.h>
@@ -320,6 +322,7 @@ std::string isolated_row(const Case& c, int runs, bool& sane)
 int main(int argc, char** argv)
 {
   aniso_remesh::keep_freed_memory();  // as the command-line tool does
+  if(argc > 1 && std::string(argv[1]) == "--cones") return cone_placement_rows::run_all(std::vector<std::string>(argv + 2, argv + argc));
   int runs = 3;
   bool quick = false, scaling = false, issue = false, cvt_threads = false;
   std::string output, only;
@@ -334,7 +337,8 @@ int main(int argc, char** argv)
     else if(a == "--output" && i + 1 < argc) output = argv[++i];
     else if(a == "--only" && i + 1 < argc) only = argv[++i];
     else {
-      std::cerr << "usage: bench_paper [--runs R] [--threads T] [--output FILE.md] [--only TEXT] [--quick | --scaling | --issue | --cvt-threads]\n";
+      std::cerr << "usage: bench_paper [--runs R] [--threads T] [--output FILE.md] [--only TEXT] [--quick | --scaling | --issue | --cvt-threads]\n"
+                   "       bench_paper --cones [--budget B] [--max-cones K] model.off ...\n";
       return 2;
     }
   }

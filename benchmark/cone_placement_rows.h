@@ -1,13 +1,18 @@
 // Copyright (c) 2026 Aniso_conformal developers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The cone metric of issue 16 on the limb models of CGAL's data set (benchmark/cones.md): per model, the
-// greedy cone placement (internal/conformal/cone_metric.h) on the input's background with the isotropic
-// metric (adjust_edge_lengths(), no refinement), then solve_cone_metric() with the cones and angles found
-// (it must give the same u), next to the spherical embedding of the same background (its conformal
-// factor's range as a log scale, 0.5 log(cf_max / cf_min), or its failure message).
+// `bench_paper --cones`: the cone metric of issue 16 on the limb models of CGAL's data set
+// (benchmark/cones.md): per model, the greedy cone placement (internal/conformal/cone_metric.h) on the
+// input's background with the isotropic metric (adjust_edge_lengths(), no refinement), then
+// solve_cone_metric() with the cones and angles found (it must give the same u), next to the spherical
+// embedding of the same background (its conformal factor's range as a log scale, 0.5 log(cf_max / cf_min),
+// or its failure message). A part of bench_paper rather than a program of its own: it compiled the cone
+// and sphere solvers again (82 CPU-s of every build of ./test.sh).
 //
-// usage: bench_cones [--budget 2.0] [--max-cones 64] model.off ...   (a markdown row per model)
+// usage: bench_paper --cones [--budget 2.0] [--max-cones 64] model.off ...   (a markdown row per model)
+
+#ifndef ANISO_CONFORMAL_BENCHMARK_CONE_PLACEMENT_ROWS_H
+#define ANISO_CONFORMAL_BENCHMARK_CONE_PLACEMENT_ROWS_H
 
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/Uniform_metric.h>
@@ -23,16 +28,16 @@
 #include <string>
 #include <vector>
 
+namespace cone_placement_rows {
+
 namespace AC = Aniso_conformal;
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0)
+inline double seconds_since(std::chrono::steady_clock::time_point t0)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::string sphere_figure(AC::Intrinsic_triangulation t)
+inline std::string sphere_figure(AC::Intrinsic_triangulation t)
 {
   try {
     const AC::Spherical_embedding emb = AC::spherical_embedding(t);
@@ -46,7 +51,7 @@ std::string sphere_figure(AC::Intrinsic_triangulation t)
   }
 }
 
-void run(const std::string& path, const AC::internal::Cone_placement_options& options)
+inline void run(const std::string& path, const AC::internal::Cone_placement_options& options)
 {
   const AC::Input_surface s = AC::IO::read_triangle_mesh(path);
   AC::Intrinsic_triangulation t(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
@@ -78,16 +83,15 @@ void run(const std::string& path, const AC::internal::Cone_placement_options& op
   std::fflush(stdout);
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+// the table of `bench_paper --cones ARGS`, `args` the arguments after --cones; returns the exit status
+inline int run_all(const std::vector<std::string>& args)
 {
   AC::internal::Cone_placement_options options;
   std::vector<std::string> files;
-  for(int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if(a == "--budget" && i + 1 < argc) options.max_log_range = std::stod(argv[++i]);
-    else if(a == "--max-cones" && i + 1 < argc) options.max_cones = std::size_t(std::stoul(argv[++i]));
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if(a == "--budget" && i + 1 < args.size()) options.max_log_range = std::stod(args[++i]);
+    else if(a == "--max-cones" && i + 1 < args.size()) options.max_cones = std::size_t(std::stoul(args[++i]));
     else files.push_back(a);
   }
   std::printf("| model | vertices | cones | cone angles (deg) | range of u, 4 start cones | range of u | solves / Newton it. | time (s) | "
@@ -102,3 +106,7 @@ int main(int argc, char** argv)
   }
   return 0;
 }
+
+} // namespace cone_placement_rows
+
+#endif // ANISO_CONFORMAL_BENCHMARK_CONE_PLACEMENT_ROWS_H
