@@ -25,7 +25,7 @@ if [[ "${1:-}" == "--sanitize-subset" ]]; then
   cmake --build build-sanitize -j"$(nproc)" --target sanitizer_subset
   cd build-sanitize
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    ctest --output-on-failure -j"$(nproc)" -R '^(test_io|test_cli)$'
+    ctest --output-on-failure -j"$(nproc)" -R '^(test_io|test_cli|test_cli_cones)$'
   exit 0
 fi
 if [[ "${1:-}" == "--sanitize" ]]; then
