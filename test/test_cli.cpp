@@ -27,6 +27,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -50,7 +51,9 @@ std::string slurp(const std::string& path)
 
 Run run(const std::string& args)
 {
-  const std::string o = out_dir + "/cli_stdout.txt", e = out_dir + "/cli_stderr.txt";
+  // per process: CTest runs the cow's case (test_cli_cones) beside the others, two processes of this module
+  const std::string pid = std::to_string(long(getpid()));
+  const std::string o = out_dir + "/cli_stdout_" + pid + ".txt", e = out_dir + "/cli_stderr_" + pid + ".txt";
   const int rc = std::system((tool + " " + args + " > " + o + " 2> " + e).c_str());
   Run r;
   r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
