@@ -59,6 +59,8 @@ Run run(const std::string& args)
   r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
   r.out = slurp(o);
   r.err = slurp(e);
+  std::remove(o.c_str());
+  std::remove(e.c_str());
   return r;
 }
 
