@@ -711,6 +711,11 @@ BOOST_AUTO_TEST_CASE(tool_reports_and_keeps_the_corners_of_a_cube)
              std::string::npos);
   BOOST_TEST(parse_error({"--input", "a.off", "--vertices", "10", "--feature-angle", "30", "--no-features"})
                  .find("--feature-angle excludes --no-features") != std::string::npos);
+  // --keep-ragged-creases: remesh()'s drop_ragged_creases(false); meaningless without features
+  BOOST_TEST(!parse({"--input", "a.off", "--vertices", "10"}).keep_ragged_creases);
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--keep-ragged-creases"}).keep_ragged_creases);
+  BOOST_TEST(parse_error({"--input", "a.off", "--vertices", "10", "--keep-ragged-creases", "--no-features"})
+                 .find("--no-features excludes --keep-ragged-creases") != std::string::npos);
 
   const std::string in = out_dir + "/cli_cube.off", report = out_dir + "/cli_cube.json";
   Aniso_conformal::IO::write_polygon_soup(

@@ -20,6 +20,7 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
+#include <Aniso_conformal/internal/features/ragged_creases.h>
 #include <Aniso_conformal/internal/optimize/crowded_vertices.h>
 #include <Aniso_conformal/internal/optimize/triangle_orientation.h>
 #include <Aniso_conformal/internal/tensor.h>
@@ -359,7 +360,10 @@ BOOST_AUTO_TEST_CASE(crease_components_shorter_than_an_output_edge_are_left_out)
   // report says so; at 2000 (0.05) they are followed
   for(std::size_t n : {std::size_t(20), std::size_t(2000)}) {
     AC::Remeshing_result r;
-    const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Planar_domain>(plate, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+    // (ragged creases kept: at 20 vertices the spike's edges are finer than the output, and its creases,
+    // whose triangles bend at other edges too, would be left out as ragged before their length counts)
+    const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Planar_domain>(
+      plate, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).drop_ragged_creases(false));
     BOOST_TEST(out.points.size() == n);
     BOOST_TEST_MESSAGE("spike plate -> " << n << ": " << r.features.short_components_dropped << " dropped, " << r.features.corners << " corners, "
                                          << r.features.crease_edges << " crease edges; theta_min " << r.quality.theta_min);
@@ -373,6 +377,108 @@ BOOST_AUTO_TEST_CASE(crease_components_shorter_than_an_output_edge_are_left_out)
       BOOST_TEST(r.features.short_components_dropped == 0u);
       BOOST_TEST(r.features.crease_edges == g.crease_edges.size());
       BOOST_TEST(r.features.corners == g.corners.size());
+    }
+  }
+}
+
+namespace {
+// make_grid_cube(n) made rough: each vertex at least `margin` grid steps from the cube's edges moved along
+// its face's normal by a fixed pseudo-random multiple of `amplitude` grid steps, in [-amplitude, amplitude]
+// (a noisy scan of a box, its edges clean)
+AC::Input_surface make_rough_cube(int n, int margin, double amplitude)
+{
+  const AC::Input_surface cube = make_grid_cube(n);
+  std::vector<Eigen::Vector3d> p = cube.points();
+  const double step = 2.0 / n;
+  for(auto& x : p) {
+    int axis = 0;
+    x.cwiseAbs().maxCoeff(&axis);
+    double from_edge = n;
+    for(int k = 0; k < 3; ++k)
+      if(k != axis) from_edge = std::min(from_edge, (1 - std::abs(x[k])) / step);
+    if(from_edge < margin - 1e-9) continue;
+    const long g = std::lround((x.x() + 1) / step) * 73856093L ^ std::lround((x.y() + 1) / step) * 19349663L ^
+                   std::lround((x.z() + 1) / step) * 83492791L;
+    x[axis] += (x[axis] > 0 ? 1 : -1) * amplitude * step * (double(((g % 9) + 9) % 9) / 4 - 1);
+  }
+  return AC::Input_surface(p, cube.faces());
+}
+} // namespace
+
+BOOST_AUTO_TEST_CASE(ragged_crease_components_are_left_out)
+{
+  using AC::internal::without_ragged_crease_components;
+  AC::internal::Ragged_creases left_out;
+  // a clean box: no crease edge is ragged, whatever the output's size
+  const AC::Input_surface box = make_grid_cube(10);
+  const AC::Feature_graph gb = AC::detect_features(box, 60, 30);
+  for(std::size_t n : {std::size_t(20), std::size_t(2000)}) {
+    const AC::Feature_graph kept = without_ragged_crease_components(box, gb, n, 60, 30, {}, {}, left_out);
+    BOOST_TEST(kept.crease_edges == gb.crease_edges);
+    BOOST_TEST(left_out.components == 0u);
+    BOOST_TEST(!left_out.rough);
+  }
+  // a box whose faces are bumpy three steps away from its edges: the crease fragments there whose
+  // triangles bend by more than 30 degrees at other edges are left out, the twelve edges stay
+  const AC::Input_surface bumpy = make_rough_cube(10, 3, 0.5);
+  const AC::Feature_graph g = AC::detect_features(bumpy, 60, 30);
+  BOOST_TEST_MESSAGE("bumpy box: " << g.crease_edges.size() << " crease edges, " << g.curves.size() << " curves, " << g.corners.size()
+                                   << " corners, crease length " << g.crease_length());
+  BOOST_TEST_REQUIRE(g.crease_edges.size() > gb.crease_edges.size());
+  AC::Feature_graph kept = without_ragged_crease_components(bumpy, g, 200, 60, 30, {}, {}, left_out);
+  for(const auto& e : gb.crease_edges)  // the same vertex indices: only positions moved
+    BOOST_TEST(std::binary_search(kept.crease_edges.begin(), kept.crease_edges.end(), e));
+  BOOST_TEST(left_out.components > 0u);
+  BOOST_TEST(!left_out.rough);  // under a quarter of the crease length
+  BOOST_TEST(std::abs(left_out.length + kept.crease_length() - g.crease_length()) <= 1e-9 * g.crease_length());
+  BOOST_TEST(left_out.length < 0.25 * g.crease_length());
+  // a ragged component with an edge the user marked is kept whole
+  std::vector<std::array<std::size_t, 2>> fragment;
+  for(const auto& e : g.crease_edges)
+    if(!std::binary_search(kept.crease_edges.begin(), kept.crease_edges.end(), e)) fragment.push_back(e);
+  BOOST_TEST_REQUIRE(!fragment.empty());
+  const std::size_t before = left_out.components;
+  kept = without_ragged_crease_components(bumpy, g, 200, 60, 30, {fragment.front()}, {}, left_out);
+  BOOST_TEST(left_out.components == before - 1);
+  BOOST_TEST(std::binary_search(kept.crease_edges.begin(), kept.crease_edges.end(), fragment.front()));
+  // output edges shorter than the noise (10^7 vertices): nothing is ragged at that resolution
+  kept = without_ragged_crease_components(bumpy, g, 10000000, 60, 30, {}, {}, left_out);
+  BOOST_TEST(kept.crease_edges == g.crease_edges);
+  BOOST_TEST(left_out.components == 0u);
+  // rough up to one step from the edges: ragged fragments are most of the crease length, so the surface is
+  // rough and every detected crease goes, the twelve edges too (rough faces make their creases suspect)
+  const AC::Input_surface rough = make_rough_cube(8, 1, 1.0);
+  const AC::Feature_graph gr = AC::detect_features(rough, 60, 30);
+  BOOST_TEST_REQUIRE(!gr.crease_edges.empty());
+  kept = without_ragged_crease_components(rough, gr, 200, 60, 30, {}, {}, left_out);
+  BOOST_TEST(kept.empty());
+  BOOST_TEST(left_out.rough);
+  BOOST_TEST(std::abs(left_out.length - gr.crease_length()) <= 1e-9 * gr.crease_length());
+  // at feature angle 180 every crease is the user's: kept
+  kept = without_ragged_crease_components(rough, gr, 200, 180, 30, {}, {}, left_out);
+  BOOST_TEST(kept.crease_edges == gr.crease_edges);
+
+  // through remesh(): counted in the result and the report, and drop_ragged_creases(false) keeps them
+  for(bool drop : {true, false}) {
+    AC::Remeshing_result r;
+    const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(
+      rough, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(300)).drop_ragged_creases(drop));
+    BOOST_TEST(out.points.size() == 300u);
+    BOOST_TEST_MESSAGE("rough box, drop " << drop << ": " << r.features.ragged_components_dropped << " ragged components left out, "
+                                          << r.features.crease_edges << " crease edges kept; G_avg " << r.quality.G_avg << ", theta_min "
+                                          << r.quality.theta_min);
+    if(drop) {
+      BOOST_TEST(r.features.rough_surface);
+      BOOST_TEST(r.features.ragged_components_dropped > 0u);
+      BOOST_TEST(r.features.crease_edges == 0u);
+      BOOST_TEST(r.features.corners == 0u);
+      const nlohmann::json j = AC::IO::report_json(r);
+      BOOST_TEST(j.at("features").at("rough_surface") == true);
+      BOOST_TEST(j.at("features").at("ragged_components_dropped") == r.features.ragged_components_dropped);
+    } else {
+      BOOST_TEST(!r.features.rough_surface);
+      BOOST_TEST(r.features.ragged_components_dropped == 0u);
+      BOOST_TEST(r.features.crease_edges > 0u);
     }
   }
 }

@@ -690,10 +690,11 @@ BOOST_AUTO_TEST_CASE(thin_needles_and_pancakes_are_refused_with_the_reason_folds
     BOOST_TEST(r.inverted_triangles == 0u);
     BOOST_TEST(r.quality.G_min > 0.2);
     BOOST_TEST(r.hausdorff_distance_relative < 0.06);
-    // with them (the default), the corners of the fold are fixed sites: still no inverted triangle, the
+    // with them, ragged ones kept, the corners of the fold are fixed sites: still no inverted triangle, the
     // worst triangle worse (G_min 0.178 measured) where they sit close together along the zigzag
     AC::Remeshing_result rf;
-    const AC::Remeshed_surface outf = remesh_sphere(fold, AC::Uniform_metric(), rf, AC::parameters::number_of_vertices(std::size_t(300)));
+    const AC::Remeshed_surface outf = remesh_sphere(
+      fold, AC::Uniform_metric(), rf, AC::parameters::number_of_vertices(std::size_t(300)).drop_ragged_creases(false));
     BOOST_TEST(outf.points.size() == 300u);
     BOOST_TEST(rf.inverted_triangles == 0u);
     BOOST_TEST(rf.features.corners > 0u);
@@ -701,6 +702,12 @@ BOOST_AUTO_TEST_CASE(thin_needles_and_pancakes_are_refused_with_the_reason_folds
     BOOST_TEST(rf.quality.G_min > 0.1);
     BOOST_TEST_MESSAGE("fold with features: " << rf.features.corners_kept << " of " << rf.features.corners << " corners kept, G_min "
                                               << rf.quality.G_min << ", Hausdorff " << rf.hausdorff_distance_relative);
+    // with the defaults the zigzag is a staircase across the triangles: its creases are ragged, left out
+    AC::Remeshing_result rd;
+    remesh_sphere(fold, AC::Uniform_metric(), rd, AC::parameters::number_of_vertices(std::size_t(300)));
+    BOOST_TEST(rd.features.ragged_components_dropped > 0u);
+    BOOST_TEST(rd.features.corners == 0u);
+    BOOST_TEST(rd.inverted_triangles == 0u);
   }
   // the limit is between 10 and 20: a needle 10 times longer than wide is remeshed
   const AC::Input_surface accepted_needle = AC::make_ellipsoid(4, 1, 0.1, 0.1);

@@ -92,6 +92,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .cvt_method(o.cvt == "lloyd" ? AC::Cvt_method::LLOYD : AC::Cvt_method::LBFGS)
                     .corner_angle(o.corner_angle)
                     .feature_angle(o.no_features ? 180.0 : o.feature_angle)
+                    .drop_ragged_creases(!o.keep_ragged_creases)
                     .feature_edges(marked.edges)
                     .feature_vertices(marked.vertices)
                     .planar_boundary(o.planar_boundary == "lengths" ? AC::Planar_boundary::KEEP_LENGTHS
@@ -161,6 +162,13 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::printf("features     input %zu curves (crease length %.4g), %zu corners; output keeps %zu of the corners and covers "
                   "%.1f %% of the crease length\n",
                   ft.curves, ft.crease_length, ft.corners, ft.corners_kept, 100.0 * ft.covered_share);
+    if(ft.ragged_components_dropped > 0)
+      std::printf("features     %zu ragged crease components left out (length %.4g): their triangles bend at other edges too "
+                  "(noise or a staircase, not a sharp crease)%s\n",
+                  ft.ragged_components_dropped, ft.ragged_length_dropped,
+                  ft.rough_surface ? "; the surface is rough (ragged creases are a quarter of its crease length or more): every "
+                                     "detected crease left out; --keep-ragged-creases keeps them"
+                                   : "; --keep-ragged-creases keeps them");
     if(ft.short_components_dropped > 0)
       std::printf("features     %zu crease components shorter than an output edge left out (length %.4g): no output edge can follow them\n",
                   ft.short_components_dropped, ft.short_length_dropped);

@@ -51,6 +51,7 @@ struct Options {
   double corner_angle = 30;
   double feature_angle = 60;  // sharp features: angle between face normals above which an edge is a crease
   bool no_features = false;   // --no-features: no crease (feature angle 180)
+  bool keep_ragged_creases = false;  // --keep-ragged-creases: no crease component left out as noise
   std::string features_file;  // --features FILE: the user's crease edges and corners
   std::string planar_boundary = "automatic";
   std::string surface_optimization = "repair";
@@ -275,8 +276,13 @@ inline void declare_options(CLI::App& app, Options& o)
              "them and the creases and corners the output keeps",
              real("in [0, 180]", [](double x) { return x >= 0 && x <= 180; }))
       ->group(re);
-  app.add_flag("--no-features", o.no_features, "no sharp feature: the same as --feature-angle 180")
-    ->excludes(feature_angle)
+  CLI::Option* no_features =
+    app.add_flag("--no-features", o.no_features, "no sharp feature: the same as --feature-angle 180")->excludes(feature_angle)->group(re);
+  app.add_flag("--keep-ragged-creases", o.keep_ragged_creases,
+               "keep the crease components that look like noise (their triangles bend at other edges by half the feature "
+               "angle or more: a noisy scan, a staircase crease), which are left out by default, and on a rough surface "
+               "(ragged components a quarter of the crease length or more) every crease")
+    ->excludes(no_features)
     ->group(re);
   app.add_option("--features", o.features_file,
                  "--input meshes: a file of features to keep whatever their angle, one per line: two vertex indices "

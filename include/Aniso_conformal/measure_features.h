@@ -44,6 +44,15 @@ struct Feature_report {
   /// fragments of a noisy scan); the figures above count the creases kept
   std::size_t short_components_dropped = 0;
   double short_length_dropped = 0;  ///< their total length, in the input's units
+  /// ragged crease components left out before the remeshing (`remesh()`'s `drop_ragged_creases`, default
+  /// `true`): components of which 20 % of the length or more are crease edges whose triangles bend at
+  /// another edge by half the feature angle or more (noise or a staircase crease, not a sharp one); all the
+  /// detected components when `rough_surface`. The figures above count the creases kept
+  std::size_t ragged_components_dropped = 0;
+  double ragged_length_dropped = 0;  ///< their total length, in the input's units
+  /// ragged components made a quarter of the detected crease length or more, so every detected crease was left
+  /// out (the user's marked features are kept)
+  bool rough_surface = false;
 };
 
 namespace internal {

@@ -132,6 +132,13 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *     (in the metric) to another one; a crease component (creases connected through their vertices)
  *     shorter than one output edge in the metric is left out with its corners unless the user marked part
  *     of it (`Feature_report::short_components_dropped`); `Remeshing_result::features` measures what is kept;
+ *   - `drop_ragged_creases` (default `true`): crease components that are noise rather than sharp creases
+ *     are left out before the rest: a crease edge is ragged when another edge of one of its triangles,
+ *     shorter than an output edge of an isotropic mesh, bends by half `feature_angle` or more; a component
+ *     of which ragged edges make 20 % of the length is left out with its corners, and when such
+ *     components make a quarter of the detected crease length, every detected crease is (a rough surface:
+ *     a noisy scan, a crease across the triangles); the user's marked features stay
+ *     (`Feature_report::ragged_components_dropped`, `rough_surface`; manual, "Sharp features");
  *   - `feature_edges` (`std::vector<std::array<std::size_t, 2>>`, default none) and `feature_vertices`
  *     (`std::vector<std::size_t>`, default none): the user's own creases (pairs of input vertex indices)
  *     and corners, kept whatever their angle, on top of those `feature_angle` finds (`detect_features()`;

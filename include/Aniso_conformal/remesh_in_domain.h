@@ -16,6 +16,7 @@
 #include <Aniso_conformal/internal/features/boundary_distance.h>
 #include <Aniso_conformal/internal/features/crease_sites.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
+#include <Aniso_conformal/internal/features/ragged_creases.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/internal/remesh/hole_patches.h>
@@ -56,6 +57,7 @@ struct Pipeline_start {
   double edge_lengths_seconds = 0;              // stage 2's seconds so far
   std::size_t short_creases_dropped = 0;        // crease components shorter than an output edge, dropped
   double short_crease_length_dropped = 0;       // their length (input units)
+  internal::Ragged_creases ragged_creases;      // the ragged crease components left out (ragged_creases.h)
   const Input_surface& background(const Input_surface& surface) const { return patches ? patches->closed : surface; }
 };
 
@@ -93,6 +95,9 @@ Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMet
   // the input's sharp features (issue 15): measured on the output, their time counted as the metric's
   const auto features_start = std::chrono::steady_clock::now();
   start.features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
+  if(options.drop_ragged_creases)  // noise and staircases, not sharp creases (ragged_creases.h)
+    start.features = without_ragged_crease_components(surface, start.features, n, options.feature_angle, options.corner_angle,
+                                                      options.feature_edges, options.feature_vertices, start.ragged_creases);
   const double features_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - features_start).count();
   // 1. metric, 2. edge lengths (begun)
   if(start.patches)
@@ -365,6 +370,9 @@ inline void record_features(const Input_surface& surface, const Pipeline_start& 
   result.features = measure_features(surface, start.features, out.points, out.faces);
   result.features.short_components_dropped = start.short_creases_dropped;
   result.features.short_length_dropped = start.short_crease_length_dropped;
+  result.features.ragged_components_dropped = start.ragged_creases.components;
+  result.features.ragged_length_dropped = start.ragged_creases.length;
+  result.features.rough_surface = start.ragged_creases.rough;
   result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
 }
 

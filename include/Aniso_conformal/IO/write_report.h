@@ -59,6 +59,35 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
   if(!row.empty()) rows.push_back(row);  // a last, incomplete row: written as it is
   return rows;
 }
+// the report's `features` object: the input's features, what the output keeps, what was left out, the run
+inline nlohmann::json features_json(const Remeshing_result& r)
+{
+  nlohmann::json f = {{"crease_edges", r.features.crease_edges},
+                      {"curves", r.features.curves},
+                      {"corners", r.features.corners},
+                      {"corners_kept", r.features.corners_kept},
+                      {"crease_length", report_number(r.features.crease_length)},
+                      {"covered_length", report_number(r.features.covered_length)},
+                      {"covered_share", report_number(r.features.covered_share)}};
+  if(r.features.short_components_dropped > 0) {  // creases the detection found, left out as shorter than an output edge
+    f["short_components_dropped"] = r.features.short_components_dropped;
+    f["short_length_dropped"] = report_number(r.features.short_length_dropped);
+  }
+  if(r.features.ragged_components_dropped > 0) {  // creases the detection found, left out as ragged (noise)
+    f["ragged_components_dropped"] = r.features.ragged_components_dropped;
+    f["ragged_length_dropped"] = report_number(r.features.ragged_length_dropped);
+    f["rough_surface"] = r.features.rough_surface;
+  }
+  f["crease_run"] = crease_run_name(r.crease_run);  // which run stood
+  if(!r.creases_not_followed.empty()) f["creases_not_followed"] = r.creases_not_followed;
+  if(!r.corners_not_kept.empty()) f["corners_not_kept"] = r.corners_not_kept;
+  if(r.crease_sites > 0) {  // absent: no crease site placed (no crease curve, or curves too short for one)
+    f["crease_sites"] = r.crease_sites;
+    f["crease_edges_recovered"] = r.crease_edges_recovered;
+    f["crease_edges_missing"] = r.crease_edges_missing;
+  }
+  return f;
+}
 } // namespace internal
 
 /*!
@@ -71,7 +100,9 @@ inline nlohmann::json domain_figure(const Domain_figure& f)
  * `metric_stretch`: min, median, 95th percentile and max of the metric's stretch ratio at the output
  * vertices, i.e. the anisotropy the mesh realises); `features`, only if the input has sharp features
  * (`r.features`, `Feature_report`: crease edges, curves and corners of the input, corners kept, crease length,
- * the length and share of it covered by output edges; `crease_run`, which run stood: `crease_run_name()` of
+ * the length and share of it covered by output edges; `short_components_dropped` and `short_length_dropped`,
+ * `ragged_components_dropped`, `ragged_length_dropped` and `rough_surface` when crease components were
+ * left out; `crease_run`, which run stood: `crease_run_name()` of
  * `r.crease_run`, "refined", "input-vertices", "not-followed" (with `creases_not_followed`), "features-dropped"
  * (with `creases_not_followed` and `corners_not_kept`) or "none"); `repairs`, only if the input was repaired on reading
  * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
@@ -124,26 +155,10 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                     {"median", report_number(q.stretch_median)},
                     {"p95", report_number(q.stretch_p95)},
                     {"max", report_number(q.stretch_max)}}}};
-  if(r.features.crease_edges > 0 || r.features.corners > 0)  // absent: the input has no sharp feature
-    j["features"] = {{"crease_edges", r.features.crease_edges},
-                     {"curves", r.features.curves},
-                     {"corners", r.features.corners},
-                     {"corners_kept", r.features.corners_kept},
-                     {"crease_length", report_number(r.features.crease_length)},
-                     {"covered_length", report_number(r.features.covered_length)},
-                     {"covered_share", report_number(r.features.covered_share)}};
-  if(r.features.short_components_dropped > 0) {  // creases the detection found, left out as shorter than an output edge
-    j["features"]["short_components_dropped"] = r.features.short_components_dropped;
-    j["features"]["short_length_dropped"] = report_number(r.features.short_length_dropped);
-  }
-  if(j.contains("features")) j["features"]["crease_run"] = crease_run_name(r.crease_run);  // which run stood
-  if(!r.creases_not_followed.empty()) j["features"]["creases_not_followed"] = r.creases_not_followed;
-  if(!r.corners_not_kept.empty()) j["features"]["corners_not_kept"] = r.corners_not_kept;
-  if(r.crease_sites > 0) {  // absent: no crease site placed (no crease curve, or curves too short for one)
-    j["features"]["crease_sites"] = r.crease_sites;
-    j["features"]["crease_edges_recovered"] = r.crease_edges_recovered;
-    j["features"]["crease_edges_missing"] = r.crease_edges_missing;
-  }
+  // absent: the input has no sharp feature (none detected; all left out as short or ragged: only those counts)
+  if(r.features.crease_edges > 0 || r.features.corners > 0 || r.features.short_components_dropped > 0 ||
+     r.features.ragged_components_dropped > 0)
+    j["features"] = internal::features_json(r);
   if(r.repairs.any())
     j["repairs"] = {{"input_vertices", r.repairs.input_points},
                     {"input_faces", r.repairs.input_polygons},

@@ -138,50 +138,45 @@ inline std::vector<std::size_t> corners_to_fix(const Feature_graph& g, const Int
   return fixed;
 }
 
-// The feature graph `g` of `surface` without its crease components shorter than the output edge length
-// `h`: a component is a set of crease edges connected through their vertices, its length the sum of its
-// edges' lengths in the metric of `itri` (whose first vertices are the input's; the mean of the two
-// square roots, as refine_background() measures). No chain of output edges can follow a crease shorter
-// than one output edge, and its corners, fixed sites a fraction of an edge apart, made slivers: on a
-// noisy scan most creases are such fragments (CGAL's ChineseDragon-10kv at 2000 vertices: 232 of its 375
-// components, theta_min 0.05 degrees; femur 107 of 274), while no component of the CAD meshes
-// (fandisk, pinion, anchor, joint, oblong, cube-meshed, part, rotor_small, spool) is that short. A
-// component with an edge of `marked_edges` or a vertex of `marked_vertices` (the user's) is kept whole.
-// The rest is chained again by detect_features() with those edges marked (corners by the same rules,
-// local to each component, so the kept ones do not change). Adds the dropped components and their
-// length in the input's units to `dropped` and `dropped_length`; returns `g` itself when none is dropped.
-inline Feature_graph without_short_crease_components(const Input_surface& surface, const Feature_graph& g, const Intrinsic_triangulation& itri,
-                                                     double h, double corner_angle,
-                                                     const std::vector<std::array<std::size_t, 2>>& marked_edges,
-                                                     const std::vector<std::size_t>& marked_vertices, std::size_t& dropped,
-                                                     double& dropped_length)
-{
-  if(g.crease_edges.empty()) return g;
-  const std::size_t nv = surface.number_of_vertices();
-  std::vector<std::size_t> parent(nv);
-  for(std::size_t v = 0; v < nv; ++v) parent[v] = v;
-  auto find = [&](std::size_t v) {
+// The crease components of a feature graph (crease edges connected through their vertices), by union-find
+// over the input's vertices: root(v) names the component of crease vertex v, user[root(v)] is set when the
+// component holds an edge of `marked_edges` or a vertex of `marked_vertices` (the user's, kept whole)
+struct Crease_components {
+  std::vector<std::size_t> parent;
+  std::vector<char> user;
+  Crease_components(std::size_t nv, const Feature_graph& g, const std::vector<std::array<std::size_t, 2>>& marked_edges,
+                    const std::vector<std::size_t>& marked_vertices)
+    : parent(nv), user(nv, 0)
+  {
+    for(std::size_t v = 0; v < nv; ++v) parent[v] = v;
+    for(const auto& e : g.crease_edges) parent[root(e[0])] = root(e[1]);
+    for(const auto& m : marked_edges)
+      if(m[0] < nv) user[root(m[0])] = 1;
+    for(std::size_t v : marked_vertices)
+      if(v < nv) user[root(v)] = 1;
+  }
+  std::size_t root(std::size_t v)
+  {
     while(parent[v] != v) v = parent[v] = parent[parent[v]];
     return v;
-  };
-  for(const auto& e : g.crease_edges) parent[find(e[0])] = find(e[1]);
-  std::vector<double> metric_length(nv, 0.0), length(nv, 0.0);
-  std::vector<char> user(nv, 0);
-  for(const auto& e : g.crease_edges) {
-    const int a = int(e[0]), b = int(e[1]);
-    const std::size_t r = find(e[0]);
-    metric_length[r] += metric_distance(itri, a, b);
-    length[r] += (surface.points()[e[1]] - surface.points()[e[0]]).norm();
   }
-  for(const auto& m : marked_edges)
-    if(m[0] < nv) user[find(m[0])] = 1;
-  for(std::size_t v : marked_vertices)
-    if(v < nv) user[find(v)] = 1;
+};
+
+// `g` without the crease components for whose root `drop` is true (never one the user marked), each
+// counted once into `dropped` with its length `length[root]` (input units) into `dropped_length`; the rest
+// chained again by detect_features() with those edges marked (corners by the same rules, local to each
+// component, so the kept ones do not change). `g` itself when none is dropped.
+template <typename Drop>
+Feature_graph without_crease_components(const Input_surface& surface, const Feature_graph& g, Crease_components& c,
+                                        const std::vector<double>& length, Drop drop, double corner_angle,
+                                        const std::vector<std::array<std::size_t, 2>>& marked_edges,
+                                        const std::vector<std::size_t>& marked_vertices, std::size_t& dropped, double& dropped_length)
+{
   std::vector<std::array<std::size_t, 2>> kept;
-  std::vector<char> counted(nv, 0);
+  std::vector<char> counted(c.parent.size(), 0);
   for(const auto& e : g.crease_edges) {
-    const std::size_t r = find(e[0]);
-    if(user[r] || !(metric_length[r] < h)) {
+    const std::size_t r = c.root(e[0]);
+    if(c.user[r] || !drop(r)) {
       kept.push_back(e);
       continue;
     }
@@ -194,6 +189,35 @@ inline Feature_graph without_short_crease_components(const Input_surface& surfac
   if(kept.size() == g.crease_edges.size()) return g;
   kept.insert(kept.end(), marked_edges.begin(), marked_edges.end());
   return detect_features(surface, 180.0, corner_angle, kept, marked_vertices);
+}
+
+// The feature graph `g` of `surface` without its crease components shorter than the output edge length
+// `h`: a component's length is the sum of its edges' lengths in the metric of `itri` (whose first vertices
+// are the input's; the mean of the two square roots, as refine_background() measures). No chain of output
+// edges can follow a crease shorter than one output edge, and its corners, fixed sites a fraction of an
+// edge apart, made slivers: on a noisy scan most creases are such fragments (CGAL's ChineseDragon-10kv at
+// 2000 vertices: 232 of its 375 components, theta_min 0.05 degrees; femur 107 of 274), while no component
+// of the CAD meshes (fandisk, pinion, anchor, joint, oblong, cube-meshed, part, rotor_small, spool) is that
+// short. A component the user marked is kept whole. Adds the dropped components and their length in the
+// input's units to `dropped` and `dropped_length`; returns `g` itself when none is dropped.
+inline Feature_graph without_short_crease_components(const Input_surface& surface, const Feature_graph& g, const Intrinsic_triangulation& itri,
+                                                     double h, double corner_angle,
+                                                     const std::vector<std::array<std::size_t, 2>>& marked_edges,
+                                                     const std::vector<std::size_t>& marked_vertices, std::size_t& dropped,
+                                                     double& dropped_length)
+{
+  if(g.crease_edges.empty()) return g;
+  const std::size_t nv = surface.number_of_vertices();
+  Crease_components c(nv, g, marked_edges, marked_vertices);
+  std::vector<double> metric_length(nv, 0.0), length(nv, 0.0);
+  for(const auto& e : g.crease_edges) {
+    const std::size_t r = c.root(e[0]);
+    metric_length[r] += metric_distance(itri, int(e[0]), int(e[1]));
+    length[r] += (surface.points()[e[1]] - surface.points()[e[0]]).norm();
+  }
+  return without_crease_components(
+    surface, g, c, length, [&](std::size_t r) { return metric_length[r] < h; }, corner_angle, marked_edges, marked_vertices, dropped,
+    dropped_length);
 }
 
 // The vertices of the background (any, not only the input's) that a domain keeps as output vertices

@@ -57,6 +57,7 @@ struct Remeshing_options {
   unsigned random_seed = defaults::random_seed;
   double corner_angle = defaults::corner_angle;
   double feature_angle = defaults::feature_angle;
+  bool drop_ragged_creases = defaults::drop_ragged_creases;
   std::vector<std::array<std::size_t, 2>> feature_edges;  // the user's creases (none by default)
   std::vector<std::size_t> feature_vertices;              // the user's corners (none by default)
   unsigned number_of_threads = defaults::number_of_threads;
@@ -77,6 +78,7 @@ struct Remeshing_options {
     o.random_seed = internal::random_seed(np);
     o.corner_angle = internal::corner_angle(np);
     o.feature_angle = internal::feature_angle(np);
+    o.drop_ragged_creases = internal::drop_ragged_creases(np);
     o.feature_edges = internal::feature_edges(np);
     o.feature_vertices = internal::feature_vertices(np);
     o.number_of_threads = internal::number_of_threads(np);
@@ -99,6 +101,7 @@ inline auto canonical_parameters(const Remeshing_options& o, Visitor_handle& vis
       .random_seed(o.random_seed)
       .corner_angle(o.corner_angle)
       .feature_angle(o.feature_angle)
+      .drop_ragged_creases(o.drop_ragged_creases)
       .number_of_threads(o.number_of_threads)
       .max_adjustment_rounds(o.max_adjustment_rounds)
       .max_flips_per_edge(o.max_flips_per_edge)
