@@ -128,6 +128,37 @@ BOOST_AUTO_TEST_CASE(parser_reads_options_and_defaults)
   BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--corner-angle", "0"}).corner_angle == 0.0);
 }
 
+// the curvature metric is built from the command line: every option that concerns it reaches it (before
+// this test, --feature-angle, --no-features and --threads did not: the metric's smoothing stopped at
+// 60-degree edges whatever the remeshing took as a crease)
+BOOST_AUTO_TEST_CASE(curvature_metric_options_follow_the_command_line)
+{
+  const Aniso_conformal::Curvature_metric_options library;
+  const auto d = aniso_remesh::curvature_metric_options(parse({"--input", "a.off", "--vertices", "500", "--metric", "curvature"}));
+  BOOST_TEST(d.stretch_max == 10.0);
+  BOOST_TEST(d.smoothing_iterations == library.smoothing_iterations);
+  BOOST_TEST(d.smoothing_rings == library.smoothing_rings);
+  BOOST_TEST(d.scale_smoothing_iterations == library.scale_smoothing_iterations);
+  BOOST_TEST(d.gradation == library.gradation);
+  BOOST_TEST(d.gradation_vertices == 500u);  // the gradation's lengths are the output's
+  BOOST_TEST(d.feature_angle == library.feature_angle);
+  BOOST_TEST(d.number_of_threads == 0u);
+  const auto o = aniso_remesh::curvature_metric_options(
+    parse({"--input", "a.off", "--vertices", "700", "--metric", "curvature", "--stretch-max", "30", "--smoothing-iterations", "3",
+           "--smoothing-rings", "1", "--scale-smoothing-iterations", "0", "--gradation", "0", "--feature-angle", "35", "--threads", "1"}));
+  BOOST_TEST(o.stretch_max == 30.0);
+  BOOST_TEST(o.smoothing_iterations == 3);
+  BOOST_TEST(o.smoothing_rings == 1);
+  BOOST_TEST(o.scale_smoothing_iterations == 0);
+  BOOST_TEST(o.gradation == 0.0);
+  BOOST_TEST(o.gradation_vertices == 700u);
+  BOOST_TEST(o.feature_angle == 35.0);
+  BOOST_TEST(o.number_of_threads == 1u);
+  // --no-features: no edge is a crease, for the metric's smoothing either
+  BOOST_TEST(aniso_remesh::curvature_metric_options(
+               parse({"--input", "a.off", "--vertices", "10", "--metric", "curvature", "--no-features"})).feature_angle == 180.0);
+}
+
 BOOST_AUTO_TEST_CASE(parser_rejects_bad_command_lines)
 {
   // each refusal is one line naming the option and the problem: CLI11's for one option or a pair, ours

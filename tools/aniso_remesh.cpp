@@ -256,13 +256,7 @@ int main_impl(int argc, char** argv)
   if(!o.metric_file.empty())
     return run(o, surface, AC::IO::read_metric_file(o.metric_file, repairs), 0.0, o.input, &repairs, marked);
   if(o.metric == "curvature") {
-    AC::Curvature_metric_options co;
-    co.stretch_max = o.stretch_max;
-    co.smoothing_iterations = o.smoothing_iterations;
-    co.smoothing_rings = o.smoothing_rings;
-    if(o.scale_smoothing_iterations >= 0) co.scale_smoothing_iterations = o.scale_smoothing_iterations;
-    if(o.gradation >= 0) co.gradation = o.gradation;
-    co.gradation_vertices = std::size_t(o.vertices);  // the metric lengths of the gradation: those of the output
+    const AC::Curvature_metric_options co = aniso_remesh::curvature_metric_options(o);
     return run(o, surface, AC::Curvature_metric(surface, co), 0.0, o.input, &repairs, marked);
   }
   if(o.metric == "fig6" || o.metric == "fig7") {

@@ -10,6 +10,7 @@
 #ifndef ANISO_CONFORMAL_TOOLS_COMMAND_LINE_H
 #define ANISO_CONFORMAL_TOOLS_COMMAND_LINE_H
 
+#include <Aniso_conformal/Curvature_metric.h>
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/parameters.h>
 
@@ -303,7 +304,7 @@ inline void declare_options(CLI::App& app, Options& o)
     ->type_name("WHEN")
     ->check(CLI::IsMember({"off", "repair", "always"}))
     ->group(re);
-  app.add_option("--threads", o.threads, "worker threads of the CVT (default 0: all cores)")
+  app.add_option("--threads", o.threads, "worker threads of the curvature metric, the CVT, the dual and the quality (default 0: all cores)")
     ->type_name("T")
     ->transform(decimal_integer())
     ->check(CLI::Range(0LL, 1024LL))
@@ -372,6 +373,24 @@ inline Options parse_command_line(const std::vector<std::string>& args)
     throw Aniso_conformal::Invalid_input("--background-vertices applies to --domain square only");
   if(o.metric.empty() && o.metric_file.empty() && o.image.empty()) o.metric = "isotropic";
   return o;
+}
+
+/// The options of --metric curvature: the bound and the smoothing as given, the gradation's lengths
+/// those of --vertices, the crease test of the smoothing the one of the sharp features (--feature-angle,
+/// 180 with --no-features: the metric does not stop its averaging at an edge that the remeshing does not
+/// keep as a crease) and --threads.
+inline Aniso_conformal::Curvature_metric_options curvature_metric_options(const Options& o)
+{
+  Aniso_conformal::Curvature_metric_options co;
+  co.stretch_max = o.stretch_max;
+  co.smoothing_iterations = o.smoothing_iterations;
+  co.smoothing_rings = o.smoothing_rings;
+  if(o.scale_smoothing_iterations >= 0) co.scale_smoothing_iterations = o.scale_smoothing_iterations;
+  if(o.gradation >= 0) co.gradation = o.gradation;
+  if(o.vertices > 0) co.gradation_vertices = std::size_t(o.vertices);
+  co.feature_angle = o.no_features ? 180.0 : o.feature_angle;
+  co.number_of_threads = o.threads;
+  return co;
 }
 
 } // namespace aniso_remesh
