@@ -891,6 +891,8 @@ BOOST_AUTO_TEST_CASE(a_run_whose_refined_creases_fail_follows_them_on_the_input_
     in, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(std::size_t(150)).visitor(std::ref(counter)));
   BOOST_TEST(r.creases_not_followed.empty());
   BOOST_TEST((r.crease_run == AC::Crease_run::INPUT_VERTICES));
+  BOOST_TEST_MESSAGE("pillow_005: the refined run failed: " << r.crease_refinement_failed);
+  BOOST_TEST(r.crease_refinement_failed.find("inverted") != std::string::npos);  // the sphere's reason, kept
   BOOST_TEST(r.crease_sites > 10u);
   BOOST_TEST(out.points.size() == 150u);
   BOOST_TEST(r.inverted_triangles == 0u);
@@ -929,6 +931,8 @@ BOOST_AUTO_TEST_CASE(creases_that_fail_twice_give_the_run_without_them)
   AC::remesh_in_domain<AC::Spherical_domain>(in, AC::Uniform_metric(), r1, np.visitor(std::ref(once)));
   BOOST_TEST(once.started[AC::Stage::EMBEDDING] == 2);
   BOOST_TEST(r1.creases_not_followed.empty());
+  BOOST_TEST(r1.crease_refinement_failed == "injected failure 1");  // why the first run did not stand
+  BOOST_TEST(AC::IO::report_json(r1).at("features").at("crease_refinement_failed") == "injected failure 1");
   BOOST_TEST((r1.crease_run == AC::Crease_run::INPUT_VERTICES));
   BOOST_TEST(std::string(AC::crease_run_name(r1.crease_run)) == "input-vertices");
   BOOST_TEST(AC::IO::report_json(r1).at("features").at("crease_run") == "input-vertices");  // the report says which run stood
@@ -944,6 +948,8 @@ BOOST_AUTO_TEST_CASE(creases_that_fail_twice_give_the_run_without_them)
   BOOST_TEST(twice.started[AC::Stage::EMBEDDING] == 3);
   BOOST_TEST(twice.started[AC::Stage::METRIC] == 1);
   BOOST_TEST(r2.creases_not_followed == "injected failure 1");
+  BOOST_TEST(r2.crease_refinement_failed.empty());  // said by creases_not_followed
+  BOOST_TEST(!AC::IO::report_json(r2).at("features").contains("crease_refinement_failed"));
   BOOST_TEST((r2.crease_run == AC::Crease_run::NOT_FOLLOWED));
   BOOST_TEST(std::string(AC::crease_run_name(r2.crease_run)) == "not-followed");
   BOOST_TEST(AC::IO::report_json(r2).at("features").at("crease_run") == "not-followed");

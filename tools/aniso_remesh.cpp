@@ -175,9 +175,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     if(result.crease_run == AC::Crease_run::REFINED)
       std::printf("features     crease run %s: the crease sites on the crease pieces refined\n", AC::crease_run_name(result.crease_run));
     else if(result.crease_run == AC::Crease_run::INPUT_VERTICES)
-      std::printf("features     crease run %s: the run on refined crease pieces failed; the crease sites on the input's own crease "
-                  "vertices\n",
-                  AC::crease_run_name(result.crease_run));
+      std::printf("features     crease run %s: the run on refined crease pieces failed (%s); the crease sites on the input's own "
+                  "crease vertices\n",
+                  AC::crease_run_name(result.crease_run), result.crease_refinement_failed.c_str());
     if(!result.creases_not_followed.empty())
       std::printf("features     crease run %s: creases not followed: the run with crease sites failed (%s); this output is the run "
                   "without them\n",

@@ -116,6 +116,10 @@ struct Remeshing_result {
   /// if pieces were split or their refinement failed, the sites on the input's own crease vertices) failed, the first with this
   /// message (`Remeshing_failure`), and the output is that of the run without them (corners kept, creases not)
   std::string creases_not_followed;
+  /// empty, or, when the run with the crease sites on the input's own crease vertices stood
+  /// (`Crease_run::INPUT_VERTICES`), why the run on the refined crease pieces before it failed (the
+  /// message of its `Remeshing_failure`)
+  std::string crease_refinement_failed;
   /// empty, or why no corner was kept either (`Crease_run::FEATURES_DROPPED`): the run with the corners as
   /// fixed sites and no crease site failed with this message, and the output is that of the run without
   /// any feature site

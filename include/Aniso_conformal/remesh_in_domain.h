@@ -494,6 +494,7 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
     result.crease_run = run;
     result.discarded_seconds += discarded;
     if(run == Crease_run::NOT_FOLLOWED || run == Crease_run::FEATURES_DROPPED) result.creases_not_followed = reason;
+    if(run == Crease_run::INPUT_VERTICES) result.crease_refinement_failed = reason;
     return std::move(out);
   };
   if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits); }, &reason, nullptr))

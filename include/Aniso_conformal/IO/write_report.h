@@ -80,6 +80,7 @@ inline nlohmann::json features_json(const Remeshing_result& r)
   }
   f["crease_run"] = crease_run_name(r.crease_run);  // which run stood
   if(!r.creases_not_followed.empty()) f["creases_not_followed"] = r.creases_not_followed;
+  if(!r.crease_refinement_failed.empty()) f["crease_refinement_failed"] = r.crease_refinement_failed;
   if(!r.corners_not_kept.empty()) f["corners_not_kept"] = r.corners_not_kept;
   if(r.crease_sites > 0) {  // absent: no crease site placed (no crease curve, or curves too short for one)
     f["crease_sites"] = r.crease_sites;
@@ -103,7 +104,7 @@ inline nlohmann::json features_json(const Remeshing_result& r)
  * the length and share of it covered by output edges; `short_components_dropped` and `short_length_dropped`,
  * `ragged_components_dropped`, `ragged_length_dropped` and `rough_surface` when crease components were
  * left out; `crease_run`, which run stood: `crease_run_name()` of
- * `r.crease_run`, "refined", "input-vertices", "not-followed" (with `creases_not_followed`), "features-dropped"
+ * `r.crease_run`, "refined", "input-vertices" (with `crease_refinement_failed`), "not-followed" (with `creases_not_followed`), "features-dropped"
  * (with `creases_not_followed` and `corners_not_kept`) or "none"); `repairs`, only if the input was repaired on reading
  * (`r.repairs`, `Repair_report`: the file's vertex and face counts, polygons triangulated and the
  * triangles they became, points welded and points left unwelded, duplicated faces removed, vertices of no face dropped, faces
