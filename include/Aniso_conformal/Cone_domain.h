@@ -71,7 +71,8 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
    * sheets (a cone of 629 degrees on CGAL's femur, a genus-2 bone) and cannot be merged into one site; a
    * vertex there, of degree about angle / 60 degrees, is what a mesh of a saddle-like cone needs. The
    * widest first; the cones of positive curvature are merged into their nearest site by the dual
-   * (`Cone_domain_traits`).
+   * (`Cone_domain_traits`). Fixed for the CVT and the dual only: the surface optimisation moves them
+   * (`Remeshed_surface::released_vertices`).
    */
   static std::vector<std::size_t> vertices_kept(const Embedding& emb)
   {

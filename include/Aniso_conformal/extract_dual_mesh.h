@@ -32,6 +32,10 @@ struct Remeshed_surface {
   /// the input's corners kept inside it and the crease sites; in a closed domain the corners, crease sites
   /// and loop sites): later stages (`optimize_surface_mesh()`) never move them
   std::size_t fixed_vertices = 0;
+  /// fixed sites of the CVT among the first `fixed_vertices` that later stages may move, as vertex indices:
+  /// the cone domain's kept cones (`Cone_domain::vertices_kept()`: a cone of negative curvature needs a
+  /// site on it for the dual, issue 16), which on the output are ordinary vertices of the input surface
+  std::vector<std::size_t> released_vertices;
   /// output edges on the input's creases, as (smaller, larger) vertex index pairs, joining consecutive
   /// crease sites (issue 15 item 2): later stages (`optimize_surface_mesh()`) never flip them
   std::vector<std::array<std::size_t, 2>> kept_edges;

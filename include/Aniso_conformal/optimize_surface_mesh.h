@@ -139,7 +139,8 @@ struct Surface_optimization_report {
  * Kept: the number of vertices, the topology (flips keep the genus and the boundary; an edge already
  * present is never created), the boundary vertices (but the sliding ones above, which stay on the
  * input's boundary) and the first `mesh.fixed_vertices` vertices (the CVT's fixed sites: the input's corners
- * and crease sites; fixed), the edges of `mesh.kept_edges` (the creases' output edges: never flipped), every vertex on the input (moved vertices get
+ * and crease sites; fixed) but those of `mesh.released_vertices` (the cone domain's cones, moved like any
+ * other vertex), the edges of `mesh.kept_edges` (the creases' output edges: never flipped), every vertex on the input (moved vertices get
  * their new `Surface_point`, planar ones keep z = 0). Faces are rewritten only if an edge was flipped
  * (the same triangles in the same order otherwise), or a crowded vertex moved. Time O(rounds * (E + V log F)), serial (a user's
  * metric model need not be safe for concurrent calls).

@@ -183,6 +183,7 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
     domain_kept.erase(std::remove_if(domain_kept.begin(), domain_kept.end(), [&](std::size_t v) { return on_patch[v] != 0; }), domain_kept.end());
   }
   const std::vector<std::size_t> kept = kept_vertices_apart(domain_kept, corners, itri, result.refinement.output_edge_length, n / 8);
+  const std::size_t first_kept = fixed.size();  // their output vertices: [first_kept, first_kept + kept.size())
   for(std::size_t v : kept) fixed.push_back(seam_site<Domain>(emb, itri, int(v)));
   // the crease sites after the corners, at equal metric arc length along each curve (crease_sites.h)
   Crease_sites crease_sites;
@@ -238,6 +239,9 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   }
   Traits_with_fixed_corners<typename Domain::Traits> traits(Domain::make_traits(itri, emb, options.number_of_threads), std::move(fixed));
   Remeshed_surface dual = cvt_and_dual(traits);
+  // the domain's kept vertices: fixed for the CVT and the dual, free for the surface optimisation (the
+  // patches' apexes removed below come after them: their indices stand)
+  for(std::size_t j = 0; j < kept.size(); ++j) dual.released_vertices.push_back(first_kept + j);
   if(patches) {
     const auto mended = remove_patch_triangles(dual, loops, first, apexes, surface.number_of_vertices(), patches->closed, surface,
                                                sphere_sites.empty() ? nullptr : &sphere_sites);
