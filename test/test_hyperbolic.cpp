@@ -312,6 +312,37 @@ BOOST_AUTO_TEST_CASE(klein_power_diagram_integrals_and_cvt)
   BOOST_TEST(contains(message_of<AC::Invalid_input>([&] { d.initial_sites(0, 0); }), "at least one site"));
 }
 
+// The optimiser's sites are not wrapped between iterations: a site that a tile of the band held drifts in
+// that tile's frame and can cross into a tile next to it that the band has not reached. wrap() finds such a
+// point across one side pairing of a reached tile (before, the band was doubled to find it: on CGAL's
+// couplingdown with --gradation 1.5 its copies grew to the cap in 11-18 s and the run failed). A fresh
+// domain has reached the fundamental domain only: every image of a site by one or two generators is a
+// tile beyond it.
+BOOST_AUTO_TEST_CASE(wrap_finds_sites_in_tiles_next_to_those_reached)
+{
+  const AC::Input_surface s = eight_1k();
+  Background b(s);
+  const AC::Hyperbolic_embedding emb = AC::hyperbolic_embedding(b.itri);
+  AC::Hyperbolic_klein_domain_traits d(b.itri, emb, 1);
+  BOOST_REQUIRE(d.number_of_group_elements() == 1u);
+  const std::vector<AC::Hyperbolic_klein_domain_traits::Point> x = d.initial_sites(20, 3);
+  std::size_t wrapped = 0;
+  for(std::size_t i = 0; i < x.size(); ++i)
+    for(std::size_t a = 0; a < emb.generators.size(); ++a)
+      for(const Eigen::Matrix3d& G : {Eigen::Matrix3d(emb.generators[a]), Eigen::Matrix3d(emb.generators[a] * emb.generators[(a + 1) % emb.generators.size()])}) {
+        const Eigen::Vector3d p = AC::internal::normalize_on_hyperboloid(G * x[i]);
+        Eigen::Vector3d image;
+        Eigen::Matrix3d T;
+        BOOST_REQUIRE(d.wrap(p, image, T));
+        // the site itself, by the element found
+        BOOST_TEST(AC::internal::hyperbolic_distance(image, x[i]) < 1e-5);  // the layout's pairings differ from emb.generators by rounding
+        BOOST_TEST(AC::internal::hyperbolic_distance(AC::internal::normalize_on_hyperboloid(T * p), image) < 1e-8);
+        ++wrapped;
+      }
+  BOOST_TEST(wrapped == 2 * x.size() * emb.generators.size());
+  BOOST_TEST(d.number_of_group_elements() > 1u);  // the tiles found were added
+}
+
 BOOST_AUTO_TEST_CASE(fig13_eight_meets_the_quality_bar)
 {
   const AC::Input_surface s = AC::IO::read_triangle_mesh(data_dir + "/meshes/eight_10k.off");

@@ -183,7 +183,8 @@ public:
   {
     int face;
     Eigen::Vector3d bary = Eigen::Vector3d::Zero();
-    for(std::size_t gi = 0; gi < m_band.elements().size(); ++gi) {
+    const std::size_t reached = m_band.elements().size();
+    for(std::size_t gi = 0; gi < reached; ++gi) {
       // tiles in order of their distance: the fundamental domain first
       const Eigen::Matrix3d Ti = gi == 0 ? Eigen::Matrix3d::Identity() : m_band.inverse_elements()[gi];
       const Point q = internal::normalize_on_hyperboloid(Ti * p);
@@ -193,6 +194,21 @@ public:
         return true;
       }
     }
+    // then the tiles next to those, across one side of theirs (g P, P a side pairing), the new element
+    // added: the optimiser's sites are not wrapped between iterations, so a site that the band's tile g
+    // held drifts in g's frame and can cross g's far side. On CGAL's couplingdown (genus 9, a fundamental
+    // domain reaching 6 from the centre) a site in such a tile moved by 0.1 into one two steps from the
+    // fundamental domain; the band was doubled to find it, its copies grew to the cap (11-18 s) and the
+    // run failed
+    for(std::size_t gi = 0; gi < reached; ++gi)
+      for(const Eigen::Matrix3d& P : m_band.side_pairings()) {
+        const Eigen::Matrix3d G = m_band.elements()[gi] * P;
+        const Point q = internal::normalize_on_hyperboloid(internal::lorentz_inverse(G) * p);
+        if(!locate_klein(internal::to_klein(q), face, bary)) continue;
+        T = m_band.inverse_elements()[std::size_t(m_band.element_index(G))];
+        image = internal::normalize_on_hyperboloid(T * p);
+        return true;
+      }
     return false;
   }
   /// @}

@@ -79,6 +79,11 @@ public:
       const Eigen::Vector3d& b = c[(h % 3 + 1) % 3];
       m_cut_midpoint.push_back(normalize_on_hyperboloid(a + b));
       m_cut_half_length.push_back(0.5 * hyperbolic_distance(a, b));
+      // the side pairings, once each (the cut edges of one side share theirs, up to the layout's rounding)
+      bool known = false;
+      for(const Eigen::Matrix3d& P : m_generators)
+        known = known || (P - m_pairing[h]).norm() <= 1e-6 * P.norm();
+      if(!known) m_generators.push_back(m_pairing[h]);
     }
     m_distance_to_cut.assign(m_face_of_slot.size(), -1.0);
     // the point whose images tell the group elements apart (element_index()): the centroid of the face
@@ -111,6 +116,7 @@ public:
   const std::vector<Face_copy>& copies() const { return m_copies; }                  // without element 0
   double reached() const { return m_band_reached; }                                  // the first band explored so far
   const std::vector<Eigen::Matrix3d>& pairing() const { return m_pairing; }
+  const std::vector<Eigen::Matrix3d>& side_pairings() const { return m_generators; }  // the distinct non-trivial pairings
   const std::vector<std::array<Eigen::Vector3d, 3>>& corners() const { return m_corners; }
   std::size_t cap() const { return 60 * m_face_of_slot.size(); }                     // the most copies the band holds
 
@@ -291,6 +297,7 @@ private:
   std::vector<int> m_face_of_slot;
   std::vector<std::size_t> m_slot_of_face;
   std::vector<Eigen::Matrix3d> m_pairing;
+  std::vector<Eigen::Matrix3d> m_generators;  // the distinct non-trivial side pairings (they generate the group)
   std::vector<std::array<Eigen::Vector3d, 3>> m_corners;
   std::vector<Eigen::Vector3d> m_centroid;  // per slot, the centroid of its face
   std::vector<double> m_face_radius;        // per slot, the largest distance from that centroid to a corner
