@@ -157,6 +157,10 @@ BOOST_AUTO_TEST_CASE(curvature_metric_options_follow_the_command_line)
   // --no-features: no edge is a crease, for the metric's smoothing either
   BOOST_TEST(aniso_remesh::curvature_metric_options(
                parse({"--input", "a.off", "--vertices", "10", "--metric", "curvature", "--no-features"})).feature_angle == 180.0);
+  // and the remeshing's sharp features take the same angle (one function for both)
+  BOOST_TEST(aniso_remesh::feature_angle(parse({"--input", "a.off", "--vertices", "10", "--no-features"})) == 180.0);
+  BOOST_TEST(aniso_remesh::feature_angle(parse({"--input", "a.off", "--vertices", "10", "--feature-angle", "35"})) == 35.0);
+  BOOST_TEST(aniso_remesh::feature_angle(parse({"--input", "a.off", "--vertices", "10"})) == 60.0);
 }
 
 BOOST_AUTO_TEST_CASE(parser_rejects_bad_command_lines)

@@ -91,7 +91,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .random_seed(o.seed)
                     .cvt_method(o.cvt == "lloyd" ? AC::Cvt_method::LLOYD : AC::Cvt_method::LBFGS)
                     .corner_angle(o.corner_angle)
-                    .feature_angle(o.no_features ? 180.0 : o.feature_angle)
+                    .feature_angle(aniso_remesh::feature_angle(o))
                     .drop_ragged_creases(!o.keep_ragged_creases)
                     .feature_edges(marked.edges)
                     .feature_vertices(marked.vertices)

@@ -23,6 +23,7 @@
 #include <functional>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -106,6 +107,14 @@ inline CLI::Validator real(const std::string& requirement, std::function<bool(do
       return std::string();
     },
     "", "real " + requirement);
+}
+
+// a library default in the help text, as short as it reads ("1.8", not "1.800000")
+inline std::string shortest(double x)
+{
+  std::ostringstream s;
+  s << x;
+  return s.str();
 }
 
 // a real option that CLI11 checks (as text, with `check`) and that is stored in `target` with strtod
@@ -230,7 +239,7 @@ inline void declare_options(CLI::App& app, Options& o)
     ->group(me);
   add_real(app, "--gradation", o.gradation, "R",
            "curvature metric: bound on the growth of the size per unit of metric length along the edges, a ratio > 1, "
-           "or 0 for none (default 2.2)",
+           "or 0 for none (default " + shortest(Aniso_conformal::Curvature_metric_options().gradation) + ")",
            real("0 or greater than 1", [](double x) { return x == 0 || x > 1; }))
     ->group(me);
   add_real(app, "--anisotropy", o.anisotropy, "S",
@@ -375,6 +384,10 @@ inline Options parse_command_line(const std::vector<std::string>& args)
   return o;
 }
 
+/// The feature angle of the run, in degrees: --feature-angle, or 180 (no crease) with --no-features. Both
+/// the remeshing's sharp features and the curvature metric's crease test take it.
+inline double feature_angle(const Options& o) { return o.no_features ? 180.0 : o.feature_angle; }
+
 /// The options of --metric curvature: the bound and the smoothing as given, the gradation's lengths
 /// those of --vertices, the crease test of the smoothing the one of the sharp features (--feature-angle,
 /// 180 with --no-features: the metric does not stop its averaging at an edge that the remeshing does not
@@ -388,7 +401,7 @@ inline Aniso_conformal::Curvature_metric_options curvature_metric_options(const 
   if(o.scale_smoothing_iterations >= 0) co.scale_smoothing_iterations = o.scale_smoothing_iterations;
   if(o.gradation >= 0) co.gradation = o.gradation;
   if(o.vertices > 0) co.gradation_vertices = std::size_t(o.vertices);
-  co.feature_angle = o.no_features ? 180.0 : o.feature_angle;
+  co.feature_angle = feature_angle(o);
   co.number_of_threads = o.threads;
   return co;
 }
