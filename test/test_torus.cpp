@@ -538,7 +538,7 @@ BOOST_AUTO_TEST_CASE(high_stretch_embeds_with_intrinsic_flips)
   co.stretch_max = 50;
   co.smoothing_iterations = 0;
   co.scale_smoothing_iterations = 0;
-  co.gradation = 0;  // the raw field: the size gradation (default 2.2) would bound its stretch near 15
+  co.gradation = 0;  // the raw field: the size gradation (default 1.8) would bound its stretch near 13
   const AC::Curvature_metric metric(fine, co);
   BOOST_TEST(*std::max_element(metric.stretch_ratios().begin(), metric.stretch_ratios().end()) > 49.0);
   AC::Intrinsic_triangulation t = background(fine, metric);
