@@ -12,6 +12,7 @@
 
 #include <Aniso_conformal/Cone_domain.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/IO/write_cone_cvt_svg.h>
 #include <Aniso_conformal/IO/write_svg.h>
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>

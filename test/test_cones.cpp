@@ -23,7 +23,7 @@
 
 #include <Aniso_conformal/Cone_domain.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
-#include <Aniso_conformal/IO/write_svg.h>
+#include <Aniso_conformal/IO/write_cone_cvt_svg.h>
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/internal/domains/cone_surface_delaunay.h>
 #include <Aniso_conformal/make_ellipsoid.h>

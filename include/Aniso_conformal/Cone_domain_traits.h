@@ -336,20 +336,8 @@ public:
 
   /// \name Pictures
   /// @{
-  /// one chart of the atlas with the Voronoi cells that the CVT integrates over it (`voronoi_cells()`);
-  /// all coordinates are the chart's own, in units of the flat metric
-  struct Chart_cells {
-    std::vector<std::array<Eigen::Vector2d, 3>> triangles;  ///< the chart's background faces (counterclockwise)
-    std::vector<std::array<Eigen::Vector2d, 2>> outline;    ///< the edges along which the chart meets another chart (or itself)
-    std::vector<Eigen::Vector2d> points;  ///< the sites in the chart's faces (the first `own`), then the copies of the sites around it
-    std::vector<std::size_t> sites;       ///< per point, the site it stands for
-    std::size_t own = 0;                  ///< number of the chart's own sites, at the front of `points`
-    /// per point, its Voronoi cell among the chart's points (counterclockwise, not clipped to the chart:
-    /// only its part inside the chart's triangles is a cell of the cone surface); empty when unknown
-    std::vector<std::vector<Eigen::Vector2d>> cells;
-    std::vector<Eigen::Vector2d> cones;   ///< the cone singularities at corners of the chart's faces
-    std::vector<double> cone_angles;      ///< their angle sums in the flat metric (radians; `2 pi` is flat)
-  };
+  /// one chart of the atlas with the Voronoi cells that the CVT integrates over it (`voronoi_cells()`)
+  typedef Cone_chart_cells Chart_cells;
 
   /*!
    * the restricted Voronoi tessellation of `sites` on the cone surface, chart by chart, as the CVT's
@@ -368,33 +356,8 @@ public:
     move_sites(sites);
     const std::vector<Chart_points> charts = chart_points();
     std::vector<Chart_cells> out(charts.size());
-    for(std::size_t c = 0; c < charts.size(); ++c) {
-      const Chart_points& cp = charts[c];
-      Chart_cells& cc = out[c];
-      for(int f : m_chart[c].faces) {
-        const auto& p = m_emb->corner_uv[std::size_t(f)];
-        cc.triangles.push_back(p);
-        for(int k = 0; k < 3; ++k) {
-          const int t = m_twin[3 * std::size_t(f) + std::size_t(k)];
-          if(t < 0 || m_emb->chart_of_face[std::size_t(t / 3)] != int(c) ||
-             (m_emb->corner_uv[std::size_t(t / 3)][std::size_t(t % 3)] - p[std::size_t((k + 1) % 3)]).norm() > 1e3 * m_tolerance)
-            cc.outline.push_back({{p[std::size_t(k)], p[std::size_t((k + 1) % 3)]}});
-          const int v = m_faces[std::size_t(f)][std::size_t(k)];
-          if(m_is_cone[std::size_t(v)] != 0 &&
-             std::none_of(cc.cones.begin(), cc.cones.end(), [&](const Eigen::Vector2d& q) { return (q - p[std::size_t(k)]).norm() <= 1e3 * m_tolerance; })) {
-            cc.cones.push_back(p[std::size_t(k)]);
-            const auto it = std::find(m_emb->cones.begin(), m_emb->cones.end(), v);
-            const std::size_t i = std::size_t(it - m_emb->cones.begin());
-            cc.cone_angles.push_back(i < m_emb->cone_angles.size() ? m_emb->cone_angles[i] : 2 * 3.14159265358979323846);
-          }
-        }
-      }
-      cc.points = cp.points;
-      cc.own = cp.own;
-      for(int o : cp.original) cc.sites.push_back(std::size_t(o));
-      cc.cells = internal::voronoi_polygons(cp.dt.dt, cp.dt.handle, cp.points.size(),
-                                            [&](internal::Indexed_delaunay_2::Triangulation::Face_handle f) { return cp.dt.dt.circumcenter(f); });
-    }
+    for(std::size_t c = 0; c < charts.size(); ++c)
+      out[c] = internal::cone_chart_cells(m_chart[c].faces, int(c), *m_emb, m_faces, m_twin, m_is_cone, charts[c], 1e3 * m_tolerance);
     return out;
   }
   /// @}

@@ -76,6 +76,25 @@ struct Cone_embedding {
   double flat_area = 0;                                    ///< area of the flat metric (that of the background)
 };
 
+/*!
+ * \ingroup PkgAnisoConformalDomains
+ * one chart of a `Cone_embedding`'s atlas with the Voronoi cells of the CVT's sites over it, for pictures
+ * (`Cone_domain_traits::voronoi_cells()`, `IO::write_cone_cvt_svg()`); all coordinates are the chart's
+ * own, in units of the flat metric
+ */
+struct Cone_chart_cells {
+  std::vector<std::array<Eigen::Vector2d, 3>> triangles;  ///< the chart's background faces (counterclockwise)
+  std::vector<std::array<Eigen::Vector2d, 2>> outline;    ///< the edges along which the chart meets another chart (or itself)
+  std::vector<Eigen::Vector2d> points;  ///< the sites in the chart's faces (the first `own`), then the copies of the sites around it
+  std::vector<std::size_t> sites;       ///< per point, the site it stands for
+  std::size_t own = 0;                  ///< number of the chart's own sites, at the front of `points`
+  /// per point, its Voronoi cell among the chart's points (counterclockwise, not clipped to the chart:
+  /// only its part inside the chart's triangles is a cell of the cone surface); empty when unknown
+  std::vector<std::vector<Eigen::Vector2d>> cells;
+  std::vector<Eigen::Vector2d> cones;   ///< the cone singularities at corners of the chart's faces
+  std::vector<double> cone_angles;      ///< their angle sums in the flat metric (radians; `2 pi` is flat)
+};
+
 namespace internal {
 
 // the flat length of halfedge h under the log scale factors u

@@ -88,6 +88,39 @@ inline bool chart_is_complete(const Cone_chart& chart, const Cone_chart_points& 
   return true;
 }
 
+// The picture of chart `chart` (its background faces `faces`, its points `cp`) for Cone_domain_traits::
+// voronoi_cells(): its triangles, the edges where it meets another chart (or itself: corners farther apart
+// than `tolerance`), the cones at its corners (once each), and the Voronoi cells of its points.
+inline Cone_chart_cells cone_chart_cells(const std::vector<int>& faces, int chart, const Cone_embedding& emb,
+                                         const std::vector<std::array<int, 3>>& face_vertices, const std::vector<int>& twin,
+                                         const std::vector<char>& is_cone, const Cone_chart_points& cp, double tolerance)
+{
+  Cone_chart_cells cc;
+  for(int f : faces) {
+    const auto& p = emb.corner_uv[std::size_t(f)];
+    cc.triangles.push_back(p);
+    for(std::size_t k = 0; k < 3; ++k) {
+      const int t = twin[3 * std::size_t(f) + k];
+      if(t < 0 || emb.chart_of_face[std::size_t(t / 3)] != chart ||
+         (emb.corner_uv[std::size_t(t / 3)][std::size_t(t % 3)] - p[(k + 1) % 3]).norm() > tolerance)
+        cc.outline.push_back({{p[k], p[(k + 1) % 3]}});
+      const int v = face_vertices[std::size_t(f)][k];
+      if(is_cone[std::size_t(v)] == 0 ||
+         std::any_of(cc.cones.begin(), cc.cones.end(), [&](const Eigen::Vector2d& q) { return (q - p[k]).norm() <= tolerance; }))
+        continue;
+      cc.cones.push_back(p[k]);
+      const std::size_t i = std::size_t(std::find(emb.cones.begin(), emb.cones.end(), v) - emb.cones.begin());
+      cc.cone_angles.push_back(i < emb.cone_angles.size() ? emb.cone_angles[i] : 2 * 3.14159265358979323846);
+    }
+  }
+  cc.points = cp.points;
+  cc.own = cp.own;
+  for(int o : cp.original) cc.sites.push_back(std::size_t(o));
+  cc.cells = voronoi_polygons(cp.dt.dt, cp.dt.handle, cp.points.size(),
+                              [&](Indexed_delaunay_2::Triangulation::Face_handle f) { return cp.dt.dt.circumcenter(f); });
+  return cc;
+}
+
 } // namespace internal
 } // namespace Aniso_conformal
 
