@@ -22,13 +22,18 @@
 #include <Aniso_conformal/Uniform_metric.h>
 #include <Aniso_conformal/adjust_edge_lengths.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/cone_embedding.h>
 #include <Aniso_conformal/conformal_embedding.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
+#include <Aniso_conformal/flat_torus_embedding.h>
+#include <Aniso_conformal/hyperbolic_embedding.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
+#include <Aniso_conformal/make_ellipsoid.h>
 #include <Aniso_conformal/make_square_background.h>
 #include <Aniso_conformal/mesh_quality.h>
 #include <Aniso_conformal/optimize_surface_mesh.h>
 #include <Aniso_conformal/refine_background.h>
+#include <Aniso_conformal/spherical_embedding.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
@@ -40,6 +45,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <set>
@@ -257,6 +263,33 @@ BOOST_AUTO_TEST_CASE(curvature_metric_keeps_the_stretch_of_a_torus)
   const AC::Curvature_metric raw(s, o);
   for(std::size_t v = 0; v < s.number_of_vertices(); ++v)
     if(std::abs(std::abs(s.points()[v].z()) - r) < 1e-9) BOOST_TEST(std::abs(raw.stretch_ratios()[v] - o.stretch_max) < 1e-9);
+}
+
+// A triangulation's edge lengths are NaN until stage 2 sets them; every embedding said so only as a
+// failed Cholesky factorisation or line search (a Convergence_failure, as if the surface were at fault)
+BOOST_AUTO_TEST_CASE(embeddings_refuse_a_background_without_edge_lengths)
+{
+  auto refused = [](const AC::Input_surface& s, const std::function<void(AC::Intrinsic_triangulation&)>& embed) {
+    AC::Intrinsic_triangulation itri(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+    BOOST_TEST(!itri.has_edge_lengths());
+    std::string message;
+    try {
+      embed(itri);
+    } catch(const AC::Invalid_input& e) {
+      message = e.what();
+    }
+    BOOST_TEST_INFO("message: " << message);
+    BOOST_TEST(message.find("edge lengths are not set") != std::string::npos);
+    BOOST_TEST(message.find("adjust_edge_lengths()") != std::string::npos);  // the fix
+    AC::compute_metric_edge_lengths(itri);
+    BOOST_TEST(itri.has_edge_lengths());
+  };
+  refused(AC::make_square_background(AC::Uniform_metric(), 200), [](auto& t) { AC::conformal_embedding(t); });
+  refused(AC::make_ellipsoid(2), [](auto& t) { AC::spherical_embedding(t); });
+  refused(AC::make_dupin_cyclide(20, 12), [](auto& t) { AC::flat_torus_embedding(t); });
+  refused(AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_DATA_DIR) + "/meshes/eight_1k.off"),
+          [](auto& t) { AC::hyperbolic_embedding(t); });
+  refused(AC::make_ellipsoid(2), [](auto& t) { AC::cone_embedding(t, AC::parameters::number_of_vertices(std::size_t(100))); });
 }
 
 BOOST_AUTO_TEST_CASE(curvature_metric_realises_the_table_2_stretch_on_the_cyclide)

@@ -142,6 +142,12 @@ public:
   /// index of the input vertex this vertex copies, or -1 for an inserted vertex
   int input_vertex(int v) const { return m_input_vertex[v]; }
   double length(int h) const { return m_length[h]; }                                ///< metric length of the edge of h
+  /// `true` if every edge has a finite positive length: a new triangulation's lengths are NaN until
+  /// `compute_metric_edge_lengths()` or `adjust_edge_lengths()` sets them (the embeddings need them)
+  bool has_edge_lengths() const
+  {
+    return std::all_of(m_length.begin(), m_length.end(), [](double l) { return std::isfinite(l) && l > 0; });
+  }
   /// sets the length of the edge of `h` (both halfedges)
   void set_length(int h, double l)
   {
@@ -383,6 +389,16 @@ private:
   std::vector<std::size_t> m_seam_size;   // per seam: its number of input vertices
   std::vector<char> m_patch;              // per face: 1 in a hole's patch (empty: no patch)
 };
+
+namespace internal {
+// the precondition of the conformal embeddings: `itri`'s edge lengths are set (`who` names the caller)
+inline void require_edge_lengths(const Intrinsic_triangulation& itri, const std::string& who)
+{
+  if(!itri.has_edge_lengths())
+    throw Invalid_input(who + ": the background's edge lengths are not set (or not all finite and positive): compute them "
+                              "first with compute_metric_edge_lengths() or adjust_edge_lengths()");
+}
+} // namespace internal
 
 } // namespace Aniso_conformal
 

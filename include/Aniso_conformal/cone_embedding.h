@@ -292,7 +292,7 @@ Cone_metric place_cones_splitting_flat_edges(Intrinsic_triangulation& itri, cons
  * `itri`'s edges are flipped (Ptolemy flips, same conformal class). Named parameters: `number_of_vertices`
  * (sizes the charts), `max_conformal_iterations`, `conformal_tolerance`, `max_flips_per_edge`, `visitor`,
  * and `max_cones` (default 160).
- * \throws Invalid_input if `itri` has a boundary
+ * \throws Invalid_input if `itri` has a boundary, or its edge lengths are not set (`Intrinsic_triangulation::has_edge_lengths()`)
  * \throws Convergence_failure if 160 cones do not bound the range of u by 4 (with the range reached; between 2
  *         and 4 the metric is accepted once 160 cones are placed), or a
  *         Newton solve fails
@@ -300,6 +300,7 @@ Cone_metric place_cones_splitting_flat_edges(Intrinsic_triangulation& itri, cons
 template <typename NamedParameters>
 Cone_embedding cone_embedding(Intrinsic_triangulation& itri, const NamedParameters& np)
 {
+  internal::require_edge_lengths(itri, "cone_embedding()");
   std::size_t emb_splits = 0;
   internal::Cone_placement_options options;
   options.max_cones = 160;

@@ -179,7 +179,7 @@ Planar_embedding conformal_embedding_once(Intrinsic_triangulation& itri, const N
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`).
  * \returns the layout `uv` (in the units of the metric lengths: with `KEEP_SHAPE` its area is the adjusted
  *          area), `u`, the conformal factor per vertex, the solver's figures
- * \throws Invalid_input if `itri` has no boundary
+ * \throws Invalid_input if `itri` has no boundary, or its edge lengths are not set (`Intrinsic_triangulation::has_edge_lengths()`)
  * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, if the
  *         factorisation fails, or if the layout has inverted triangles (with the residual reached)
  * \throws Remeshing_failure if the layout's boundary touches or crosses itself: with `KEEP_LENGTHS`
@@ -189,6 +189,7 @@ template <typename NamedParameters = parameters::Default_named_parameters>
 Planar_embedding conformal_embedding(Intrinsic_triangulation& itri,
                                      const NamedParameters& np = parameters::default_values())
 {
+  internal::require_edge_lengths(itri, "conformal_embedding()");
   Intrinsic_triangulation entry = itri;  // kept for a second attempt: the first one flips `itri`
   std::size_t splits = 0;
   try {

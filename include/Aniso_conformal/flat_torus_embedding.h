@@ -123,7 +123,8 @@ inline void read_lattice(const Intrinsic_triangulation& itri, const Tree_cotree&
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
  *        (default `1e-9`), `max_flips_per_edge` (default 50, as in `conformal_embedding()`), `visitor`
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`)
- * \throws Invalid_input if `itri` has a boundary or is not of genus 1
+ * \throws Invalid_input if `itri` has a boundary, is not of genus 1, or its edge lengths are not set
+ *         (`Intrinsic_triangulation::has_edge_lengths()`)
  * \throws Convergence_failure if Newton's method does not reach the tolerance within the bound, or the
  *         layout is inconsistent (with the error reached)
  */
@@ -133,6 +134,7 @@ Flat_torus_embedding flat_torus_embedding(Intrinsic_triangulation& itri,
 {
   const int nv = int(itri.number_of_vertices()), nf = int(itri.number_of_faces());
   internal::require_closed_surface(itri, "flat_torus_embedding()", "the flat torus", [](int g) { return g == 1; }, "genus 1");
+  internal::require_edge_lengths(itri, "flat_torus_embedding()");
 
   Flat_torus_embedding emb;
   std::vector<char> fixed(std::size_t(nv), 0);

@@ -292,7 +292,8 @@ inline void glue_fundamental_domain(const Intrinsic_triangulation& itri, const T
  *        `adjust_edge_lengths()`); its edges may be flipped
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
  *        (default `1e-9`), `max_flips_per_edge` (default 50), `visitor`
- * \throws Invalid_input if `itri` has a boundary or genus below 2
+ * \throws Invalid_input if `itri` has a boundary or genus below 2, or its edge lengths are not set
+ *         (`Intrinsic_triangulation::has_edge_lengths()`)
  * \throws Convergence_failure if Newton's method or the flips do not finish within their bounds, some
  *         triangles are flat in the solution, or the layout fails its checks (with the error reached)
  */
@@ -304,6 +305,7 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
   Hyperbolic_embedding emb;
   emb.genus = internal::require_closed_surface(itri, "hyperbolic_embedding()", "the hyperbolic disk", [](int g) { return g >= 2; },
                                                "genus 2 or more");
+  internal::require_edge_lengths(itri, "hyperbolic_embedding()");
 
   // ---- 1. the hyperbolic metric; the global scale s makes the input's Euclidean area equal to the
   // hyperbolic area 4 pi (g - 1), so that u = 0 is a good start

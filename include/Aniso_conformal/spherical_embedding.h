@@ -215,7 +215,8 @@ Spherical_embedding spherical_embedding_once(Intrinsic_triangulation& itri, cons
  * \param np optional named parameters: `max_conformal_iterations` (default 100), `conformal_tolerance`
  *        (default `1e-9`), `max_flips_per_edge` (default 50), `visitor`
  *        (`on_iteration(Stage::EMBEDDING, it, bound, residual)`)
- * \throws Invalid_input if `itri` has a boundary, is not of genus 0, or no vertex has a simple link
+ * \throws Invalid_input if `itri` has a boundary, is not of genus 0, no vertex has a simple link, or its
+ *         edge lengths are not set (`Intrinsic_triangulation::has_edge_lengths()`)
  * \throws Convergence_failure if Newton's method or the normalisation does not converge within its bound
  *         (with the angle-sum error or the centroid offset reached), or a triangle is flat in the planar
  *         metric, or a chordal triangle is inverted or flat, or the triangles cover the sphere more than
@@ -224,6 +225,7 @@ Spherical_embedding spherical_embedding_once(Intrinsic_triangulation& itri, cons
 template <typename NamedParameters = parameters::Default_named_parameters>
 Spherical_embedding spherical_embedding(Intrinsic_triangulation& itri, const NamedParameters& np = parameters::default_values())
 {
+  internal::require_edge_lengths(itri, "spherical_embedding()");
   bool seams = false;
   for(int v = 0; v < int(itri.number_of_vertices()) && !seams; ++v) seams = itri.seam(v) >= 0;
   if(!seams) return internal::spherical_embedding_once(itri, np, nullptr);
