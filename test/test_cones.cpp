@@ -417,6 +417,37 @@ BOOST_AUTO_TEST_CASE(the_cow_goes_to_cones_when_the_sphere_fails)
   BOOST_TEST(r.hausdorff_distance_relative < 0.03);  // measured 0.0186 (the limb body at 1500: 0.0054)
 }
 
+// CGAL's femur (genus 2, test/data/cgal): the hyperbolic disk cannot resolve its sites (the metric shrinks
+// one end), so it goes to cones (108, up to 755 degrees). At 2000 sites one cone of 278 degrees lies on a
+// part narrower than the sites' spacing, its link a b c c b: no site could be merged into it and the dual
+// was refused ("1 cone ... cannot be merged"); at 1500 a cone merged into a site left two edges doubled
+// and a loop. The dual now moves the nearest free site onto such a cone and triangulates again.
+BOOST_AUTO_TEST_CASE(femur_goes_to_cones_with_free_sites_moved_onto_cones_at_its_thin_parts)
+{
+  const AC::Input_surface femur = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/femur.off");
+  BOOST_REQUIRE(femur.genus() == 2);
+  for(const std::size_t n : {std::size_t(1500), std::size_t(2000)}) {
+    AC::Remeshing_result r;
+    const AC::Remeshed_surface out =
+      AC::remesh(femur, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).random_seed(1u));  // seed 0: no such cone at 2000
+    BOOST_TEST_MESSAGE("femur -> " << n << ": " << r.domain_diagnostics.summary << "; G_avg " << r.quality.G_avg << " theta_min "
+                                   << r.quality.theta_min << " Hausdorff " << r.hausdorff_distance_relative);
+    BOOST_TEST(r.domain_choice.rfind("cones, because the hyperbolic failed: ", 0) == 0u, r.domain_choice);
+    BOOST_TEST(out.points.size() == n);
+    BOOST_TEST(closed_manifold_genus(n, out.faces) == 2);
+    BOOST_TEST(r.inverted_triangles == 0u);
+    BOOST_REQUIRE(r.domain_diagnostics.has("dual_moved_sites"));  // the configurations above were met
+    BOOST_TEST(r.domain_diagnostics.value("dual_moved_sites") >= 1.0);
+    BOOST_TEST(r.domain_diagnostics.summary.find("moved onto") != std::string::npos);
+    double off = 0;  // every vertex on the input, those moved onto cones too
+    for(const auto& x : out.points) off = std::max(off, (femur.project(x).position - x).norm());
+    BOOST_TEST(off <= 1e-9 * femur.bounding_box_diagonal());
+    BOOST_TEST(r.quality.G_avg >= 0.90);      // measured 0.924 (1500), 0.939 (2000)
+    BOOST_TEST(r.quality.theta_min >= 15.0);  // measured 23.3, 19.8
+    BOOST_TEST(r.hausdorff_distance_relative < 0.03);
+  }
+}
+
 // With the cow's noisy creases kept (drop_ragged_creases(false): 276 corners as fixed sites) every run
 // that keeps features leaves inverted triangles between fixed sites half an output edge apart, which the
 // surface optimisation cannot move (it was refused, exit 3); the last run keeps no feature site, and the

@@ -117,6 +117,11 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
     if(grown > 0)
       d.add("dual_grown_fans", double(grown),
             "sites of the dual re-starred over a region grown past a cone or a tangle (thin parts narrower than the site spacing)", true);
+    const std::size_t moved = traits.dual_statistics().moved;
+    if(moved > 0)
+      d.add("dual_moved_sites", double(moved),
+            "free sites the dual moved onto a cone that no site could be merged into (thin parts narrower than the site spacing); their output vertices lie at the cones",
+            true);
     char text[200];
     std::snprintf(text, sizeof(text),
                   "%zu cones of %.0f to %.0f degrees (%zu linearised, %zu Newton solves); area distortion %.1f (about %.3g with the "
@@ -125,6 +130,7 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
     d.summary = text;
     if(emb.edge_splits > 0) d.summary += "; " + std::to_string(emb.edge_splits) + " edges split (a triangle flattened next to a hole's loop)";
     if(grown > 0) d.summary += "; dual: " + std::to_string(grown) + " sites re-starred at thin parts";
+    if(moved > 0) d.summary += "; dual: " + std::to_string(moved) + (moved == 1 ? " site moved onto a cone" : " sites moved onto cones") + " at thin parts";
     return d;
   }
 };

@@ -199,7 +199,8 @@ public:
       throw Invalid_input("the cone domain needs at least " + std::string(m_emb->genus == 0 ? "4 sites" : "one site"));
     if(n < fixed.size())
       throw Invalid_input("the cone domain: " + std::to_string(fixed.size()) + " fixed sites but only " + std::to_string(n) + " sites in all");
-    const std::size_t k = fixed.size();
+    const std::size_t k = m_first_free = fixed.size();
+    m_moved.clear();
     std::vector<std::pair<std::size_t, std::size_t>> slot;
     std::vector<double> cumulative;
     double total = 0;
@@ -246,12 +247,19 @@ public:
   std::size_t number_of_fixed_sites() const { return 0; }
   /*!
    * where site `i` at `site` lies on the background: its face of the `Intrinsic_triangulation` and the
-   * barycentric coordinates there (the site is walked there from where it was last seen)
+   * barycentric coordinates there (the site is walked there from where it was last seen; a site that the
+   * last `dual_triangles()` moved onto a cone: that cone's background vertex)
    * \returns `false` if `i` is not a site of the last `initial_sites()` or `site` is not finite
    */
   bool background_location(std::size_t i, const Point& site, int& face, Eigen::Vector3d& bary) const
   {
     if(i >= m_state.size() || !site.allFinite()) return false;
+    for(const auto& m : m_moved)  // moved onto a cone by the dual
+      if(m.point == i) {
+        face = m.face;
+        bary = Eigen::Vector3d::Unit(m.corner);
+        return true;
+      }
     move_site(i, site);
     face = m_state[i].face;
     bary = internal::barycentric_2(m_emb->corner_uv[std::size_t(face)], m_state[i].x).cwiseMax(0.0);
@@ -301,7 +309,8 @@ public:
   /// @{
   /*!
    * the Delaunay triangulation of `sites` on the cone surface: triangles as index triples, oriented like
-   * the background, each once
+   * the background, each once. A cone that no site can be merged into (a part thinner than the sites'
+   * spacing) gets its nearest free site moved onto it (`background_location()` then gives the cone).
    * \throws Convergence_failure if two sites coincide, or the triangles do not form a closed triangulation
    *         of the surface's genus (too few sites for it, or cells near a cone of negative curvature that
    *         disagree between charts), with the first problem found
@@ -313,8 +322,9 @@ public:
     std::vector<internal::Cone_surface_delaunay::Point_on_face> points(ns);
     for(std::size_t i = 0; i < ns; ++i) points[i].face = m_state[i].face, points[i].x = m_state[i].x;
     internal::Cone_surface_delaunay delaunay(m_faces, m_twin, m_emb->corner_uv, m_is_cone);
-    std::vector<std::array<std::size_t, 3>> tris = delaunay.triangulate(points);
+    std::vector<std::array<std::size_t, 3>> tris = delaunay.triangulate(points, m_first_free);
     m_dual_statistics = delaunay.statistics();
+    m_moved = delaunay.moved_points();
     const std::size_t expected = 2 * ns + 4 * std::size_t(m_emb->genus) - 4;
     std::map<std::pair<std::size_t, std::size_t>, int> directed;
     for(const auto& t : tris)
@@ -373,49 +383,6 @@ private:
     Rigid_motion_2 frame;            // that chart -> the site's frame
   };
 
-  // Walks from x in face f straight to `target` (f's chart); returns the face reached, the position in its
-  // chart and the motion from that chart to f's.
-  void walk(int f, Eigen::Vector2d x, Eigen::Vector2d target, int& f_out, Eigen::Vector2d& x_out, Rigid_motion_2& to_start,
-            std::size_t& steps) const
-  {
-    to_start = Rigid_motion_2();
-    int entered = -1;
-    const std::size_t bound = 4 * m_itri->number_of_faces() + 16;
-    for(std::size_t step = 0; step < bound; ++step) {
-      const auto& p = m_emb->corner_uv[std::size_t(f)];
-      const Eigen::Vector3d b = internal::barycentric_2(p, target);
-      if(b.minCoeff() >= -1e-12) {
-        f_out = f;
-        x_out = target;
-        return;
-      }
-      const Eigen::Vector3d bx = internal::barycentric_2(p, x);
-      int exit = -1;
-      double first = 1e300;
-      for(int k = 0; k < 3; ++k) {
-        const int j = (k + 2) % 3;  // edge k is opposite corner k + 2
-        if(!(b[j] < 0) || 3 * f + k == entered) continue;
-        const double s = std::max(0.0, bx[j]) / (std::max(0.0, bx[j]) - b[j]);
-        if(s < first) first = s, exit = k;
-      }
-      if(exit < 0) {  // rounding: the target is outside only across the edge we came in by
-        f_out = f;
-        x_out = target;
-        return;
-      }
-      x += std::min(1.0, first) * (target - x);
-      const int t = m_itri->twin(3 * f + exit);
-      const Rigid_motion_2& m = m_emb->transition[std::size_t(t)];  // f's chart -> the next face's
-      x = m(x);
-      target = m(target);
-      to_start = to_start * m.inverse();
-      f = t / 3;
-      entered = t;
-      ++steps;
-    }
-    throw Convergence_failure("cone domain: a site's move crossed more than " + std::to_string(bound) + " faces", double(bound));
-  }
-
   void move_site(std::size_t i, const Point& p) const
   {
     Site_state& s = m_state[i];
@@ -426,7 +393,7 @@ private:
     Eigen::Vector2d x;
     Rigid_motion_2 m;
     std::size_t steps = 0;
-    walk(s.face, s.x, s.x + d, f, x, m, steps);
+    internal::walk_on_cone_surface(*m_itri, *m_emb, s.face, s.x, s.x + d, f, x, m, steps);
     s.frame = s.frame * m;
     s.face = f;
     s.x = x;
@@ -439,6 +406,7 @@ private:
     if(sites.size() != m_state.size())
       throw Invalid_input("Cone_domain_traits: " + std::to_string(sites.size()) + " sites given, but initial_sites() made " +
                           std::to_string(m_state.size()));
+    m_moved.clear();
     for(std::size_t i = 0; i < sites.size(); ++i) move_site(i, sites[i]);
   }
 
@@ -585,6 +553,8 @@ private:
   mutable std::vector<double> m_band_width;
   mutable std::size_t m_walk_steps = 0;
   mutable internal::Cone_surface_delaunay::Statistics m_dual_statistics;
+  mutable std::vector<internal::Cone_surface_delaunay::Moved_point> m_moved;  // by the last dual_triangles()
+  std::size_t m_first_free = 0;  // the sites before it are fixed
   std::vector<std::array<int, 3>> m_faces;  // the background faces and twins, for the dual
   std::vector<int> m_twin;
 };

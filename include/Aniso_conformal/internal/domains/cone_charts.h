@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 // The charts of Cone_domain_traits' atlas of the cone surface (each a patch of background faces laid out
@@ -119,6 +120,50 @@ inline Cone_chart_cells cone_chart_cells(const std::vector<int>& faces, int char
   cc.cells = voronoi_polygons(cp.dt.dt, cp.dt.handle, cp.points.size(),
                               [&](Indexed_delaunay_2::Triangulation::Face_handle f) { return cp.dt.dt.circumcenter(f); });
   return cc;
+}
+
+// Walks on the cone surface of `emb` (over the background `itri`) from x in face f straight to `target`
+// (both in f's chart); returns the face reached, the position in its chart and the motion from that chart
+// to f's, and adds the faces crossed to `steps`. Convergence_failure after 4 times the faces.
+inline void walk_on_cone_surface(const Intrinsic_triangulation& itri, const Cone_embedding& emb, int f, Eigen::Vector2d x,
+                                 Eigen::Vector2d target, int& f_out, Eigen::Vector2d& x_out, Rigid_motion_2& to_start, std::size_t& steps)
+{
+  to_start = Rigid_motion_2();
+  int entered = -1;
+  const std::size_t bound = 4 * itri.number_of_faces() + 16;
+  for(std::size_t step = 0; step < bound; ++step) {
+    const auto& p = emb.corner_uv[std::size_t(f)];
+    const Eigen::Vector3d b = internal::barycentric_2(p, target);
+    if(b.minCoeff() >= -1e-12) {
+      f_out = f;
+      x_out = target;
+      return;
+    }
+    const Eigen::Vector3d bx = internal::barycentric_2(p, x);
+    int exit = -1;
+    double first = 1e300;
+    for(int k = 0; k < 3; ++k) {
+      const int j = (k + 2) % 3;  // edge k is opposite corner k + 2
+      if(!(b[j] < 0) || 3 * f + k == entered) continue;
+      const double s = std::max(0.0, bx[j]) / (std::max(0.0, bx[j]) - b[j]);
+      if(s < first) first = s, exit = k;
+    }
+    if(exit < 0) {  // rounding: the target is outside only across the edge we came in by
+      f_out = f;
+      x_out = target;
+      return;
+    }
+    x += std::min(1.0, first) * (target - x);
+    const int t = itri.twin(3 * f + exit);
+    const Rigid_motion_2& m = emb.transition[std::size_t(t)];  // f's chart -> the next face's
+    x = m(x);
+    target = m(target);
+    to_start = to_start * m.inverse();
+    f = t / 3;
+    entered = t;
+    ++steps;
+  }
+  throw Convergence_failure("cone domain: a site's move crossed more than " + std::to_string(bound) + " faces", double(bound));
 }
 
 } // namespace internal

@@ -36,7 +36,8 @@
 //     an edge (an edge collapse, when the link condition holds), so the triangles join points only; what
 //     no collapse, fan or flip mends (a thin part narrower than the points' spacing: a point whose cell
 //     wraps around a tip, another inside its loop) is re-triangulated as one point's star over a region
-//     grown until its border is a cycle of distinct points.
+//     grown until its border is a cycle of distinct points; what that leaves unmerged or tangled gets a
+//     point moved onto the cone (the nearest one allowed to move) and the triangulation is made again.
 
 namespace Aniso_conformal {
 namespace internal {
@@ -45,20 +46,88 @@ class Cone_surface_delaunay : public Cone_surface_triangulation {
 public:
   using Cone_surface_triangulation::Cone_surface_triangulation;
 
+  /// a point that triangulate() moved onto a cone: the point, and a background face and corner at that cone
+  struct Moved_point {
+    std::size_t point = 0;
+    int face = -1, corner = -1;
+  };
+
   /*
    * The triangles of the Delaunay triangulation of `points` (indices into it), oriented like the faces.
+   * A cone that no merge, fan or grown star joins to the points (a thin part narrower than the points'
+   * spacing, whose link passes the same points twice: CGAL's femur at 2000 sites has a cone of 278 degrees
+   * of degree 5 whose link is a b c c b), or one merged into a point whose edges stay doubled or looped
+   * (femur, 1500 sites), is served instead by its nearest point of index at least `first_movable` (along
+   * the edges), moved onto it, and the triangulation is made again (up to 8 times); a point at a cone is a
+   * vertex of the triangulation there, with the cone's angle. moved_points() lists them, none with the
+   * default `first_movable` (the points' count).
    * \throws Convergence_failure if two points coincide, a point's face is not a face, the flips do not
-   *         end, or a vertex other than a point cannot be merged into a point
+   *         end, or a vertex other than a point cannot be merged into a point nor served by a moved point
    */
-  std::vector<std::array<std::size_t, 3>> triangulate(const std::vector<Point_on_face>& points)
+  std::vector<std::array<std::size_t, 3>> triangulate(std::vector<Point_on_face> points, std::size_t first_movable = std::size_t(-1))
   {
-    m_relaxed = false;
-    m_fan_doubling = false;
-    insert_and_remove_flat_vertices(points);
-    return collapse_to_points(points.size());
+    m_moved.clear();
+    std::vector<char> moved(points.size(), 0);
+    for(int round = 0;; ++round) {
+      m_relaxed = false;
+      m_fan_doubling = false;
+      m_unmerged.clear();
+      insert_and_remove_flat_vertices(points);
+      try {
+        std::vector<std::array<std::size_t, 3>> out = collapse_to_points(points.size());
+        m_stats.moved = m_moved.size();
+        return out;
+      } catch(const Convergence_failure&) {
+        if(m_unmerged.empty() || round == 8 || !move_points_onto_unmerged_cones(points, moved, first_movable)) throw;
+      }
+    }
   }
+  /// the points moved onto cones by the last triangulate()
+  const std::vector<Moved_point>& moved_points() const { return m_moved; }
 
 private:
+  // For each cone of m_unmerged, its nearest point of index >= first_movable not moved yet (`moved`) along
+  // the edges (its neighbours first: at most 256 vertices visited), moved onto it: `points` changed and
+  // m_moved extended. false if no cone found one.
+  bool move_points_onto_unmerged_cones(std::vector<Point_on_face>& points, std::vector<char>& moved, std::size_t first_movable)
+  {
+    bool any = false;
+    const std::size_t first = m_nb + std::min(first_movable, points.size()), end = m_nb + points.size();
+    for(const auto& [v, start] : m_unmerged) {
+      std::size_t j = std::size_t(-1);
+      std::map<int, double> dist = {{start, 0.0}};
+      std::set<std::pair<double, int>> queue = {{0.0, start}};
+      for(std::size_t visited = 0; !queue.empty() && visited < 256 && j == std::size_t(-1); ++visited) {
+        const auto [d, x] = *queue.begin();
+        queue.erase(queue.begin());
+        if(std::size_t(x) >= first && std::size_t(x) < end && !moved[std::size_t(x) - m_nb]) {
+          j = std::size_t(x) - m_nb;
+          break;
+        }
+        for(int sp : spokes_of(x)) {
+          const int w = head(sp);
+          const double dw = d + m_len[std::size_t(sp)];
+          const auto it = dist.find(w);
+          if(it != dist.end() && !(dw < it->second)) continue;
+          if(it != dist.end()) queue.erase({it->second, w});
+          dist[w] = dw;
+          queue.insert({dw, w});
+        }
+      }
+      if(j == std::size_t(-1)) continue;
+      for(std::size_t f = 0; f < m_faces0->size() && !moved[j]; ++f)
+        for(int k = 0; k < 3 && !moved[j]; ++k)
+          if((*m_faces0)[f][std::size_t(k)] == v) {
+            points[j].face = int(f);
+            points[j].x = (*m_layout)[f][std::size_t(k)];
+            moved[j] = 1;
+            m_moved.push_back({j, int(f), k});
+            any = true;
+          }
+    }
+    return any;
+  }
+
   // Collapses the edge of h (x -> p) into p: the faces (x, p, q) and (p, x, r) go, their outer edges are
   // glued. false (nothing done) unless the link condition holds (x and p have q and r as their only
   // common neighbours, q != r) and the faces are glued simply.
@@ -139,18 +208,22 @@ private:
   {
     const std::vector<int> sx = spokes_of(v);
     if(sx.empty()) return false;
-    if((sx.size() == 1 && remove_degree_one(sx[0])) || (sx.size() == 2 && remove_degree_two(sx))) return true;
+    if((sx.size() == 1 && remove_degree_one(sx[0])) || (sx.size() == 2 && remove_degree_two(sx))) {
+      m_merged_into[std::size_t(v)] = head(sx[0]);
+      return true;
+    }
     std::vector<std::pair<double, int>> candidates;
     for(int s : sx)
       if(std::size_t(head(s)) >= m_nb) candidates.push_back({m_len[std::size_t(s)], s});
     std::sort(candidates.begin(), candidates.end());
-    for(const auto& c : candidates)
-      if(collapse(c.second)) return true;
-    // none keeps the link condition: the nearest whose merge folds no face; the edges it doubles are
-    // flipped away after (collapse_to_points())
-    if(m_relaxed)
+    for(int strict = 1; strict >= (m_relaxed ? 0 : 1); --strict)
+      // none keeps the link condition (strict = 0): the nearest whose merge folds no face; the edges it
+      // doubles are flipped away after (collapse_to_points())
       for(const auto& c : candidates)
-        if(collapse(c.second, false)) return true;
+        if(collapse(c.second, strict == 1)) {
+          m_merged_into[std::size_t(v)] = head(c.second);
+          return true;
+        }
     return false;
   }
 
@@ -262,7 +335,7 @@ private:
         nh.push_back({head(cycle[j]), 0, -1, j + 1 == L ? 0 : base + 3});
       }
       replace(std::vector<int>(region.begin(), region.end()), nh);
-      for(int x : cluster) m_out[std::size_t(x)] = -1;
+      for(int x : cluster) m_out[std::size_t(x)] = -1, m_merged_into[std::size_t(x)] = inside;
       return true;
     }
     // the neighbours of each border point outside the region
@@ -294,7 +367,7 @@ private:
         nh.push_back(back);
       }
       replace(std::vector<int>(region.begin(), region.end()), nh);
-      for(int x : cluster) m_out[std::size_t(x)] = -1;
+      for(int x : cluster) m_out[std::size_t(x)] = -1, m_merged_into[std::size_t(x)] = apex;
       return true;
     }
     return false;
@@ -306,6 +379,7 @@ private:
   {
     // in passes: a cone whose link repeats a site or holds another cone may merge once its neighbours have
     std::vector<int> left;
+    m_merged_into.assign(m_nb, -1);
     for(std::size_t v = 0; v < m_nb; ++v)
       if(m_out[v] >= 0) left.push_back(int(v));
     while(!left.empty()) {
@@ -333,6 +407,7 @@ private:
         }
       }
       if(still.size() == left.size()) {
+        for(int v : still) m_unmerged.push_back({v, v});
         throw Convergence_failure("dual mesh: " + std::to_string(still.size()) + " " + std::string(still.size() == 1 ? "cone" : "cones") +
                                       " of the cone surface cannot be merged into a neighbouring site (too few sites around them)",
                                   double(still.size()));
@@ -390,6 +465,10 @@ private:
         round = 0;
         continue;
       }
+      // the cones merged into a tangled site: triangulate() may move points onto them
+      for(std::size_t c = 0; c < m_nb; ++c)
+        if(m_merged_into[c] >= 0 && std::find(tangled.begin(), tangled.end(), m_merged_into[c]) != tangled.end())
+          m_unmerged.push_back({int(c), m_merged_into[c]});
       const std::size_t loops = std::size_t(std::count_if(edges.begin(), edges.end(), [](const auto& e) { return e.first.first == e.first.second; }));
       throw Convergence_failure("dual mesh: " + std::to_string(repeated) + " pairs of sites are joined twice" +
                                     (loops ? " and " + std::to_string(loops) + " sites joined to themselves" : std::string()) +
@@ -454,6 +533,11 @@ private:
     return true;
   }
 
+  // the cones step 4 could not merge, or merged into a site left tangled, each with the vertex to look for
+  // a point to move from (itself, or the site it merged into); set before step 4 throws
+  std::vector<std::pair<int, int>> m_unmerged;
+  std::vector<int> m_merged_into;  // step 4: per background vertex merged by a collapse, the point it merged into
+  std::vector<Moved_point> m_moved;  // the points moved onto such cones
   bool m_relaxed = false;  // step 4: merging without the link condition (once every strict merge is done)
   bool m_fan_doubling = false;  // step 4, last resort: fans whose diagonals may double an edge (flipped away after)
 };

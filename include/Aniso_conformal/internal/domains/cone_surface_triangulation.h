@@ -49,6 +49,7 @@ public:
     std::size_t collapsed = 0;        // vertices merged into a point in step 4 (cones, and flat ones step 3 left)
     std::size_t untangled = 0;        // edges flipped in step 4 because they joined two points joined already
     std::size_t grown_fans = 0;       // step 4: cones replaced by a point's star over a region grown past their faces (thin parts)
+    std::size_t moved = 0;            // points moved onto a cone that no point could be merged into (Cone_surface_delaunay::moved_points())
   };
 
   /*
