@@ -111,6 +111,8 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
     d.add("linearised_cones", double(emb.linearised_cones), "cones placed by the linearised rounds (one factorisation)", true);
     d.add("placement_solves", double(emb.solves), "Newton solves of the placement (nonlinear rounds)", true);
     d.add("charts", double(traits.number_of_charts()), "planar charts of the atlas", true);
+    if(emb.double_edges)
+      d.add("double_edge_flips", 1.0, "1: the placement was solved again with Delaunay flips that may double an edge (a try without ended with flat triangles)", true);
     if(emb.edge_splits > 0)
       d.add("edge_splits", double(emb.edge_splits), "edges split after a placement that flattened a triangle next to a hole's loop", true);
     const std::size_t grown = traits.dual_statistics().grown_fans;
@@ -128,6 +130,7 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
                   "starting cones)",
                   emb.cones.size(), lo, hi, emb.linearised_cones, emb.solves, std::exp(2 * emb.u_range), std::exp(2 * emb.start_u_range));
     d.summary = text;
+    if(emb.double_edges) d.summary += "; solved with flips that double edges";
     if(emb.edge_splits > 0) d.summary += "; " + std::to_string(emb.edge_splits) + " edges split (a triangle flattened next to a hole's loop)";
     if(grown > 0) d.summary += "; dual: " + std::to_string(grown) + " sites re-starred at thin parts";
     if(moved > 0) d.summary += "; dual: " + std::to_string(moved) + (moved == 1 ? " site moved onto a cone" : " sites moved onto cones") + " at thin parts";

@@ -68,6 +68,7 @@ struct Cone_embedding {
   std::size_t linearised_cones = 0;  ///< cones placed by the linearised rounds, before the Newton solves
   std::size_t flips = 0;       ///< intrinsic Delaunay flips
   double residual = 0;         ///< max |target - angle sum| (radians)
+  bool double_edges = false;   ///< the placement's flips could double an edge (its first try ended with flat triangles)
   std::size_t edge_splits = 0; ///< edges split at their midpoints after a placement that flattened a triangle next to a hole's loop (new vertices of the triangulation)
   std::vector<int> chart_of_face;                          ///< per face, its chart
   std::vector<std::array<Eigen::Vector2d, 3>> corner_uv;   ///< per face, its corners in its chart (counterclockwise)
@@ -243,35 +244,47 @@ inline void grow_cone_charts(const Intrinsic_triangulation& itri, const std::vec
 // (`splits` counts the splits). Found on CGAL's blade.off with its two holes closed: a boundary ear (an
 // input triangle with two edges on the loop) whose angle between the loop edges reached 180 degrees,
 // the only surface triangle at its loop vertex, so no flip could open it; the split of its third edge
-// gives that vertex a second triangle and a vertex of its own scale. Without seams, one call.
+// gives that vertex a second triangle and a vertex of its own scale. Without seams, no split. After the
+// splits (or none), on any surface, a placement that ends with flat triangles is tried once more with flips
+// that may double an edge (`Cone_placement_options::double_edges`, cone_metric_geometry(); not by
+// default, as it changes the limb models' cones: camel at 3000 theta_min 20.5 -> 12.2, triceratops 20.9 ->
+// 29.3): CGAL's cheese (genus 133) and the femur with the curvature metric needed it.
 template <typename NamedParameters>
 Cone_metric place_cones_splitting_flat_edges(Intrinsic_triangulation& itri, const Cone_placement_options& options, const NamedParameters& np,
                                              std::size_t& splits)
 {
   bool seams = false;
   for(int v = 0; v < int(itri.number_of_vertices()) && !seams; ++v) seams = itri.seam(v) >= 0;
-  if(!seams) return place_cones(itri, options, np);
   Intrinsic_triangulation entry = itri;  // the triangulation as given: each attempt flips `itri`
+  Cone_placement_options with_double_edges = options;
+  with_double_edges.double_edges = true;
   for(int attempt = 0;; ++attempt) {
     std::vector<std::pair<int, int>> flat;
     try {
       return place_cones(itri, options, np, &flat);
     } catch(const Convergence_failure& e) {
       std::size_t made = 0;
-      if(attempt < 3) {
+      if(seams && attempt < 3) {
         std::sort(flat.begin(), flat.end(), [](std::pair<int, int> x, std::pair<int, int> y) {
           return std::minmax(x.first, x.second) < std::minmax(y.first, y.second);
         });
         made = split_edges_at_midpoints(entry, flat, [](int) { return true; });
       }
-      if(made == 0) {
-        if(splits == 0) throw;
-        throw Convergence_failure(std::string(e.what()) + " (after " + std::to_string(splits) +
-                                      " edges of triangles flattened next to the holes' loops were split)",
-                                  e.residual());
+      if(made > 0) {
+        splits += made;
+        itri = entry;
+        continue;
       }
-      splits += made;
-      itri = entry;
+      // no split (no seams, or none helps): flat triangles whose opening flip would double an edge get
+      // one more try with such flips, whose failure is the one reported
+      if(!flat.empty()) {
+        itri = entry;
+        return place_cones(itri, with_double_edges, np);
+      }
+      if(splits == 0) throw;
+      throw Convergence_failure(std::string(e.what()) + " (after " + std::to_string(splits) +
+                                    " edges of triangles flattened next to the holes' loops were split)",
+                                e.residual());
     }
   }
 }
@@ -307,6 +320,7 @@ Cone_embedding cone_embedding(Intrinsic_triangulation& itri, const NamedParamete
   internal::Cone_metric m = internal::place_cones_splitting_flat_edges(itri, options, np, emb_splits);
   Cone_embedding emb;
   emb.edge_splits = emb_splits;
+  emb.double_edges = m.double_edges;
   emb.cones = m.cones;
   emb.cone_angles = m.cone_angles;
   emb.u = m.u;

@@ -54,6 +54,7 @@ struct Cone_metric {
   int genus = 0;                    // of the closed surface
   std::size_t iterations = 0;       // Newton iterations, summed over the solves
   std::size_t solves = 0;           // Newton solves (solve_cone_metric(): one; place_cones(): one per nonlinear round)
+  bool double_edges = false;        // place_cones(): its flips could double edges (Cone_placement_options)
   std::size_t flips = 0;            // intrinsic Delaunay flips (the first, metric-keeping pass and the solves')
   double residual = 0;              // max |target - angle sum| over every vertex, cones included (radians)
   std::size_t rejected_cones = 0;   // place_cones() with positive_cones_only: cones withdrawn (angle 2 pi or more)
@@ -72,6 +73,9 @@ struct Cone_placement_options {
   // genus 0 only: keep every cone angle in (0, 2 pi) (positive curvature). Off by default: a body with
   // limbs needs cones of negative curvature where the limbs join it (benchmark/cones.md)
   bool positive_cones_only = false;
+  // the Newton solves' Delaunay flips may double an edge (cone_metric_geometry()); the retry of
+  // cone_embedding() when a placement without ends with flat triangles
+  bool double_edges = false;
 };
 
 // the angle sum of every vertex in the metric scaled by `u`, and the number of flat triangles
@@ -163,6 +167,19 @@ inline int check_cone_angles(const Intrinsic_triangulation& itri, const std::vec
   return genus;
 }
 
+// The geometry of the cone placement's Newton solves: Euclidean vertex scaling whose Delaunay flips may,
+// with `double_edges`, join two vertices joined already (a Delta-complex, as Gillespie, Springborn and
+// Crane 2021 allow; their existence proof needs it). Without such flips a triangle can stay flat at the
+// solution where the flip that opens it would double an edge around a handle narrower than a triangle
+// (CGAL's femur with the curvature metric: 3 such triangles, the angles facing the long edge summing to
+// pi + 2.5; cheese, genus 133: 14), and the placement was refused.
+inline Euclidean_vertex_scaling cone_metric_geometry(bool double_edges)
+{
+  Euclidean_vertex_scaling g;
+  g.allow_double_edges = double_edges;
+  return g;
+}
+
 /*
  * Solves for the flat metric with cone angle `angles[i]` (radians) at vertex `cones[i]` and angle sum
  * 2 pi at every other vertex, conformal to the metric of `itri` (its edge lengths, as after
@@ -249,8 +266,8 @@ std::vector<double> dirichlet_cone_solve(Intrinsic_triangulation& itri, const st
   std::vector<char> fixed(itri.number_of_vertices(), 0);
   for(int c : cones) fixed[std::size_t(c)] = 1;
   if(cones.empty()) fixed[0] = 1;
-  Conformal_solution sol = solve_conformal_metric(itri, Euclidean_vertex_scaling(), fixed, std::vector<double>(itri.number_of_vertices(), 0.0),
-                                                  bounds, vis, "cone placement", nullptr, nullptr);
+  Conformal_solution sol = solve_conformal_metric(itri, cone_metric_geometry(m.double_edges), fixed,
+                                                  std::vector<double>(itri.number_of_vertices(), 0.0), bounds, vis, "cone placement", nullptr, nullptr);
   m.iterations += sol.iterations;
   m.flips += sol.flips;
   ++m.solves;
@@ -451,6 +468,7 @@ Cone_metric place_cones(Intrinsic_triangulation& itri, const Cone_placement_opti
   const std::string who = "cone placement";
   Cone_metric m;
   m.genus = require_closed_surface(itri, "place_cones()", "a cone metric", [](int) { return true; }, "any genus");
+  m.double_edges = options.double_edges;
   const Newton_bounds bounds = Newton_bounds::from(np);
   typename Visitor_reference<NamedParameters>::type vis = get_visitor(np);
   const std::size_t nv = itri.number_of_vertices();

@@ -70,11 +70,14 @@ inline Eigen::Vector2d third_point(const Eigen::Vector2d& p, const Eigen::Vector
 // with the scaling, so the flipped triangulation stays in the same discrete conformal class and no
 // triangle degenerates (Gillespie, Springborn and Crane 2021); or, for the first pass on the input's own
 // lengths (u = 0), the distance in the unfolded quad (law of cosines), which keeps the input metric.
-// No flip creates a double edge, nor touches the star of a vertex marked in `keep_star`.
+// No flip touches the star of a vertex marked in `keep_star`, nor creates a double edge unless
+// `allow_double_edges` (the cone metrics: cone_metric_geometry()), in which case a flip is still refused
+// where the quad's two faces are glued along another edge too (no loop edge either way).
 struct Euclidean_delaunay_flip_rule {
   const std::vector<double>& u;
   const std::vector<char>* keep_star;
   bool keep_metric;  // true: law of cosines (first pass); false: Ptolemy
+  bool allow_double_edges = false;
 
   double scaled(const Intrinsic_triangulation& itri, int h) const
   {
@@ -95,7 +98,16 @@ struct Euclidean_delaunay_flip_rule {
     const int t = itri.twin(h);
     if(opposite_angle(itri, h) + opposite_angle(itri, t) <= 3.14159265358979323846 + 1e-10) return false;
     const int c = itri.opposite_vertex(h), d = itri.opposite_vertex(t);
-    if(c == d || itri.find_halfedge(c, d) >= 0) return false;  // would create a double edge
+    if(c == d) return false;
+    typedef Intrinsic_triangulation T;
+    if(allow_double_edges) {  // two distinct faces, glued along this edge only
+      for(int e : {T::next(h), T::prev(h), T::next(t), T::prev(t)}) {
+        const int o = itri.twin(e);
+        if(o < 0 || T::face(o) == T::face(h) || T::face(o) == T::face(t)) return false;
+      }
+    } else if(itri.find_halfedge(c, d) >= 0) {
+      return false;  // would create a double edge
+    }
     if(keep_star && ((*keep_star)[std::size_t(c)] || (*keep_star)[std::size_t(d)] || (*keep_star)[std::size_t(itri.tail(h))] ||
                      (*keep_star)[std::size_t(itri.head(h))]))
       return false;
@@ -117,6 +129,7 @@ struct Euclidean_delaunay_flip_rule {
 // The Euclidean vertex-scaling geometry for solve_conformal_metric(): the energy's Hessian is the
 // cotangent Laplacian (exactly symmetric, so no symmetrisation).
 struct Euclidean_vertex_scaling {
+  bool allow_double_edges = false;  // passed to the flip rule (Euclidean_delaunay_flip_rule)
   static constexpr bool symmetrize_hessian = false;
   static constexpr bool l2_merit = false;  // the line search backtracks on the largest angle-sum error
   static const char* name() { return "Euclidean"; }
@@ -143,7 +156,7 @@ struct Euclidean_vertex_scaling {
   }
   Euclidean_delaunay_flip_rule flip_rule(const std::vector<double>& u, const std::vector<char>* keep_star) const
   {
-    return Euclidean_delaunay_flip_rule{u, keep_star, false};
+    return Euclidean_delaunay_flip_rule{u, keep_star, false, allow_double_edges};
   }
 };
 
