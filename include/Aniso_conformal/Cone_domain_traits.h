@@ -440,7 +440,7 @@ private:
         const auto it = grid.find(k);
         if(it == grid.end()) continue;
         for(std::size_t i : it->second)
-          if(internal::triangles_overlap(q, placed[i], eps)) return true;
+          if(internal::convex_polygons_overlap(q, placed[i], eps)) return true;
       }
       return false;
     };

@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/IO/write_svg.h>
+#include <Aniso_conformal/internal/domains/convex_overlap_2.h>
 
 #include <Eigen/Dense>
 
@@ -22,27 +23,6 @@
 
 namespace Aniso_conformal {
 namespace IO {
-namespace internal {
-
-// `true` if the interiors of the convex polygons a and b (any orientation) overlap: no edge of either
-// separates them (the separating axis theorem)
-template <typename A, typename B>
-bool convex_polygons_overlap(const A& a, const B& b)
-{
-  auto separated_by_an_edge_of = [](const auto& p, const auto& q) {
-    for(std::size_t k = 0; k < p.size(); ++k) {
-      const Eigen::Vector2d e = p[(k + 1) % p.size()] - p[k], n(-e.y(), e.x());
-      double pmin = 1e300, pmax = -1e300, qmin = 1e300, qmax = -1e300;
-      for(const Eigen::Vector2d& x : p) { pmin = std::min(pmin, n.dot(x)); pmax = std::max(pmax, n.dot(x)); }
-      for(const Eigen::Vector2d& x : q) { qmin = std::min(qmin, n.dot(x)); qmax = std::max(qmax, n.dot(x)); }
-      if(pmax <= qmin || qmax <= pmin) return true;
-    }
-    return false;
-  };
-  return !separated_by_an_edge_of(a, b) && !separated_by_an_edge_of(b, a);
-}
-
-} // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalIO
@@ -158,7 +138,7 @@ void write_cone_cvt_svg(const std::string& path, const std::vector<ChartCells>& 
       for(int i = column(cb.x0); i <= column(cb.x1) && !meets; ++i)
         for(int j = row(cb.y0); j <= row(cb.y1) && !meets; ++j)
           for(std::size_t k : square[std::size_t(j * G + i)])
-            if(internal::convex_polygons_overlap(cell, cc.triangles[k])) { meets = true; break; }
+            if(Aniso_conformal::internal::convex_polygons_overlap(cell, cc.triangles[k])) { meets = true; break; }
       if(!meets) continue;
       internal::append_polygon(paths[std::size_t(classes.of(values, cc.sites[e]))], cell, xy);
     }

@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/cone_embedding.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
+#include <Aniso_conformal/internal/domains/convex_overlap_2.h>
 #include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 
 #include <Eigen/Core>
@@ -47,22 +48,6 @@ struct Cone_chart_points {
   std::vector<int> start, nbr;
 };
 
-// `true` if the interiors of the triangles a and b overlap (separating axis test; touching is not overlapping)
-inline bool triangles_overlap(const std::array<Eigen::Vector2d, 3>& a, const std::array<Eigen::Vector2d, 3>& b, double eps)
-{
-  for(const auto* t : {&a, &b})
-    for(int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d e = (*t)[std::size_t((k + 1) % 3)] - (*t)[std::size_t(k)];
-      const Eigen::Vector2d n(-e.y(), e.x());
-      const double len = n.norm();
-      if(!(len > 0)) continue;
-      double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
-      for(const auto& p : a) a0 = std::min(a0, n.dot(p) / len), a1 = std::max(a1, n.dot(p) / len);
-      for(const auto& p : b) b0 = std::min(b0, n.dot(p) / len), b1 = std::max(b1, n.dot(p) / len);
-      if(a1 <= b0 + eps || b1 <= a0 + eps) return false;
-    }
-  return true;
-}
 
 // `true` if the Delaunay triangulation of a chart's sites and copies (`cp`) is complete over the chart:
 // every Delaunay circle at an own site or centred over the chart lies within `width` of it
