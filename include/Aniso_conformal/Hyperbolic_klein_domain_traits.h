@@ -143,10 +143,10 @@ public:
     for(std::size_t i = 0; i < nf; ++i) face_of_slot[i] = m_tri[i].face;
     m_band = internal::Hyperbolic_band(itri, std::move(face_of_slot), m_slot, emb.side_pairing, emb.corner_hyperboloid);
     m_total_mass = 0;
+    m_whole.resize(nf);
     for(std::size_t i = 0; i < nf; ++i) {
-      internal::Hyperbolic_cell_accumulator c;
-      internal::integrate_hyperbolic_piece(m_rho[i], m_frame[i], m_rho[i].p, 3, Point::UnitX(), c);
-      m_total_mass += c.mass;
+      m_whole[i] = internal::hyperbolic_triangle_nodes(m_rho[i], m_frame[i]);
+      for(const auto& q : m_whole[i]) m_total_mass += q.w;
     }
   }
   /// @}
@@ -268,7 +268,7 @@ public:
     std::vector<int> start, nbr;
     internal::delaunay_neighbours(pr.rt, pr.handle, start, nbr);
     std::vector<internal::Hyperbolic_cell_accumulator> acc;
-    internal::integrate_hyperbolic_restricted_voronoi(m_rho, m_frame, pr.points, start, nbr, m_threads, acc);
+    internal::integrate_hyperbolic_restricted_voronoi(m_rho, m_frame, m_whole, pr.points, start, nbr, m_threads, acc);
     std::vector<internal::Hyperbolic_cell_accumulator> folded(ns);
     for(std::size_t e = 0; e < pr.points.size(); ++e) {
       const internal::Hyperbolic_cell_accumulator& a = acc[e];
@@ -421,6 +421,7 @@ private:
   std::vector<internal::Background_triangle> m_rho;  // the same triangles with the density cf^2 (integration)
   std::vector<std::size_t> m_slot;                   // face of the Intrinsic_triangulation -> index in m_tri
   std::vector<Eigen::Matrix3d> m_frame;              // per triangle, an isometry taking the centre to its centroid
+  std::vector<std::array<internal::Hyperbolic_quadrature_node, 6>> m_whole;  // per triangle, its quadrature nodes (whole triangles)
   internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
   // the tiles explored so far (grown on demand; integrate() is const but the band is a cache)

@@ -28,7 +28,6 @@
 #include <set>
 #include <string>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -71,6 +70,15 @@ public:
       m_face_radius[i] = std::max({hyperbolic_distance(m_centroid[i], c[0]), hyperbolic_distance(m_centroid[i], c[1]),
                                    hyperbolic_distance(m_centroid[i], c[2])});
     }
+    m_cosh_face_radius.resize(m_face_radius.size());
+    m_sinh_face_radius.resize(m_face_radius.size());
+    for(std::size_t i = 0; i < m_face_radius.size(); ++i) {
+      m_cosh_face_radius[i] = std::cosh(m_face_radius[i]);
+      m_sinh_face_radius[i] = std::sinh(m_face_radius[i]);
+    }
+    m_on_cut.resize(m_pairing.size());
+    for(std::size_t h = 0; h < m_pairing.size(); ++h) m_on_cut[h] = m_pairing[h] != Eigen::Matrix3d::Identity();
+    m_seen_in_domain.assign(m_face_of_slot.size(), 0);
     // the cut: the edges glued by a non-trivial deck transformation, as midpoints and half lengths
     for(std::size_t h = 0; h < m_pairing.size(); ++h) {
       if(m_pairing[h] == Eigen::Matrix3d::Identity()) continue;
@@ -187,7 +195,7 @@ public:
     const int f = m_face_of_slot[slot];
     const int h = 3 * f + k, t = m_itri->twin(h);
     const std::size_t next_slot = m_slot_of_face[std::size_t(Intrinsic_triangulation::face(t))];
-    if(m_pairing[std::size_t(h)] == Eigen::Matrix3d::Identity()) return {next_slot, element};
+    if(!m_on_cut[std::size_t(h)]) return {next_slot, element};
     const std::uint64_t key = (std::uint64_t(std::uint32_t(element)) << 32) | std::uint64_t(std::uint32_t(h));
     auto it = m_step.find(key);
     if(it == m_step.end()) it = m_step.emplace(key, element_index(m_group[std::size_t(element)] * m_pairing[std::size_t(h)])).first;
@@ -213,7 +221,7 @@ public:
     for(const Face_copy& c : m_copies)
       if(c.distance < 0) kept.push_back(c);
     m_copies.clear();
-    m_member.clear();
+    m_copy_state.clear();  // no copy is a member; cover_disk()'s stamps are not needed between its calls
     while(!queue.empty()) {
       const Entry top = queue.top();
       queue.pop();
@@ -242,7 +250,7 @@ public:
       }
     }
     for(const Face_copy& c : kept)
-      if(!m_member.count(key_of(c.slot, c.element))) add_copy(c, band);
+      if(!is_member(key_of(c.slot, c.element))) add_copy(c, band);
     m_band_reached = band;
   }
 
@@ -254,22 +262,50 @@ public:
   std::size_t cover_disk(const Eigen::Vector3d& centre, double radius, std::size_t slot)
   {
     typedef std::pair<std::size_t, int> Key;
-    std::vector<Key> stack(1, Key(slot, 0));
-    std::set<Key> seen(stack.begin(), stack.end());
+    // a copy is within reach when d(centre, its centroid y) - R <= radius (R: its face's radius), that is
+    // when -<centre, y> <= cosh(radius + R) |y|_M: no inverse hyperbolic function per test
+    const double ch = std::cosh(radius), sh = std::sinh(radius);
+    // the copies seen by this call: stamped, per slot for the fundamental domain, hashed for the others
+    if(++m_stamp == member_bit) {
+      std::fill(m_seen_in_domain.begin(), m_seen_in_domain.end(), 0u);
+      for(auto& e : m_copy_state) e.second &= member_bit;
+      m_stamp = 1;
+    }
+    // false if this call saw the copy already; else marks it, and `member` tells whether it is in the band
+    bool member = false;
+    auto first_visit = [&](const Key& key) {
+      if(key.second == 0) {
+        if(m_seen_in_domain[key.first] == m_stamp) return false;
+        m_seen_in_domain[key.first] = m_stamp;
+        member = false;
+        return true;
+      }
+      std::uint32_t& state = m_copy_state[key_of(key.first, key.second)];
+      if((state & ~member_bit) == m_stamp) return false;
+      member = (state & member_bit) != 0;
+      state = (state & member_bit) | m_stamp;
+      return true;
+    };
+    std::vector<std::pair<Key, bool>> stack;
+    first_visit(Key(slot, 0));
+    stack.emplace_back(Key(slot, 0), false);
     std::size_t added = 0;
     while(!stack.empty()) {
-      const Key key = stack.back();
+      const Key key = stack.back().first;
+      const bool in_band = stack.back().second;
       stack.pop_back();
-      if(key.second != 0 && !m_member.count(key_of(key.first, key.second))) {
+      if(key.second != 0 && !in_band) {
         add_copy({key.first, key.second, -1.0}, radius);
         ++added;
       }
       for(int k = 0; k < 3; ++k) {
         const Key next = neighbour(key.first, key.second, k);
-        if(seen.count(next)) continue;
-        if(hyperbolic_distance(centre, copy_centroid(next.first, next.second)) - m_face_radius[next.first] > radius) continue;
-        seen.insert(next);
-        stack.push_back(next);
+        if(!first_visit(next)) continue;  // tested already: whether a copy is within reach depends on it alone
+        const Eigen::Vector3d y = next.second == 0 ? m_centroid[next.first]
+                                                    : Eigen::Vector3d(m_group[std::size_t(next.second)] * m_centroid[next.first]);
+        const double reach = ch * m_cosh_face_radius[next.first] + sh * m_sinh_face_radius[next.first];
+        if(-minkowski_dot(centre, y) > reach * std::sqrt(std::max(0.0, -minkowski_dot(y, y)))) continue;
+        stack.emplace_back(next, member);
       }
     }
     return added;
@@ -284,7 +320,7 @@ private:
       throw Convergence_failure("hyperbolic domain: the band of images around the fundamental domain (reaching " + std::to_string(band) +
                                     ") needs more than " + std::to_string(cap()) + " face copies (too few sites for this surface and metric)",
                                 band);
-    m_member.insert(key_of(c.slot, c.element));
+    m_copy_state[key_of(c.slot, c.element)] |= member_bit;
     m_copies.push_back(c);
   }
 
@@ -301,6 +337,11 @@ private:
   std::vector<std::array<Eigen::Vector3d, 3>> m_corners;
   std::vector<Eigen::Vector3d> m_centroid;  // per slot, the centroid of its face
   std::vector<double> m_face_radius;        // per slot, the largest distance from that centroid to a corner
+  std::vector<double> m_cosh_face_radius, m_sinh_face_radius;  // and its cosh and sinh (cover_disk())
+  std::vector<char> m_on_cut;               // per halfedge, whether its side pairing is not the identity
+  // cover_disk()'s copies of the fundamental domain seen, stamped with the call's number (m_copy_state elsewhere)
+  std::vector<std::uint32_t> m_seen_in_domain;
+  std::uint32_t m_stamp = 0;
   std::vector<Eigen::Vector3d> m_cut_midpoint;  // per edge of the cut, its midpoint ...
   std::vector<double> m_cut_half_length;        // ... and half its length
   std::vector<double> m_distance_to_cut;        // per slot, distance_to_cut() once computed (-1 before)
@@ -324,7 +365,15 @@ private:
   std::vector<Eigen::Vector3d> m_reference_image;          // per element, its image of m_reference
   double m_merge_tolerance = 1e-3;                         // images of it nearer than this: one element
   std::vector<Face_copy> m_copies;
-  std::unordered_set<std::uint64_t> m_member;             // the copies, as (element, slot)
+  // per copy (element, slot) outside the fundamental domain met so far: member_bit if it is in the band,
+  // ored with the number of the last cover_disk() call that saw it
+  static constexpr std::uint32_t member_bit = 0x80000000u;
+  std::unordered_map<std::uint64_t, std::uint32_t> m_copy_state;
+  bool is_member(std::uint64_t key) const
+  {
+    const auto it = m_copy_state.find(key);
+    return it != m_copy_state.end() && (it->second & member_bit) != 0;
+  }
   std::unordered_map<std::uint64_t, int> m_step;          // (element, halfedge) -> element across it
   double m_band_reached = 0;
 };
