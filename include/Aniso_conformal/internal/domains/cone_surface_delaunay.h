@@ -57,7 +57,9 @@ public:
    * A cone that no merge, fan or grown star joins to the points (a thin part narrower than the points'
    * spacing, whose link passes the same points twice: CGAL's femur at 2000 sites has a cone of 278 degrees
    * of degree 5 whose link is a b c c b), or one merged into a point whose edges stay doubled or looped
-   * (femur, 1500 sites), is served instead by its nearest point of index at least `first_movable` (along
+   * (femur, 1500 sites), or, when no cone was merged into such a point, one merged into a neighbour of it
+   * (femur with the curvature metric, 2000 sites: a point of degree 6 whose star wraps a thin handle and
+   * meets one neighbour twice), is served instead by its nearest point of index at least `first_movable` (along
    * the edges), moved onto it, and the triangulation is made again (up to 8 times); a point at a cone is a
    * vertex of the triangulation there, with the cone's angle. moved_points() lists them, none with the
    * default `first_movable` (the points' count).
@@ -469,6 +471,16 @@ private:
       for(std::size_t c = 0; c < m_nb; ++c)
         if(m_merged_into[c] >= 0 && std::find(tangled.begin(), tangled.end(), m_merged_into[c]) != tangled.end())
           m_unmerged.push_back({int(c), m_merged_into[c]});
+      // none: the cones merged into a neighbour of a tangled site (a site whose star wraps around a thin
+      // part: the cone in the part gets a point of its own)
+      if(m_unmerged.empty())
+        for(std::size_t c = 0; c < m_nb; ++c) {
+          if(m_merged_into[c] < 0) continue;
+          bool near = false;
+          for(int sp : spokes_of(m_merged_into[c]))
+            near = near || std::find(tangled.begin(), tangled.end(), head(sp)) != tangled.end();
+          if(near) m_unmerged.push_back({int(c), m_merged_into[c]});
+        }
       const std::size_t loops = std::size_t(std::count_if(edges.begin(), edges.end(), [](const auto& e) { return e.first.first == e.first.second; }));
       throw Convergence_failure("dual mesh: " + std::to_string(repeated) + " pairs of sites are joined twice" +
                                     (loops ? " and " + std::to_string(loops) + " sites joined to themselves" : std::string()) +
