@@ -95,11 +95,19 @@ private:
   {
     bool any = false;
     const std::size_t first = m_nb + std::min(first_movable, points.size()), end = m_nb + points.size();
+    // each cone's first corner in the faces (the lowest face), found in one pass
+    std::map<int, std::pair<int, int>> corner;
+    for(const auto& u : m_unmerged) corner.emplace(u.first, std::make_pair(-1, -1));
+    for(std::size_t f = 0; f < m_faces0->size(); ++f)
+      for(int k = 0; k < 3; ++k) {
+        const auto it = corner.find((*m_faces0)[f][std::size_t(k)]);
+        if(it != corner.end() && it->second.first < 0) it->second = {int(f), k};
+      }
     for(const auto& [v, start] : m_unmerged) {
       std::size_t j = std::size_t(-1);
       std::map<int, double> dist = {{start, 0.0}};
       std::set<std::pair<double, int>> queue = {{0.0, start}};
-      for(std::size_t visited = 0; !queue.empty() && visited < 256 && j == std::size_t(-1); ++visited) {
+      for(std::size_t visited = 0; !queue.empty() && visited < 256; ++visited) {
         const auto [d, x] = *queue.begin();
         queue.erase(queue.begin());
         if(std::size_t(x) >= first && std::size_t(x) < end && !moved[std::size_t(x) - m_nb]) {
@@ -116,16 +124,13 @@ private:
           queue.insert({dw, w});
         }
       }
-      if(j == std::size_t(-1)) continue;
-      for(std::size_t f = 0; f < m_faces0->size() && !moved[j]; ++f)
-        for(int k = 0; k < 3 && !moved[j]; ++k)
-          if((*m_faces0)[f][std::size_t(k)] == v) {
-            points[j].face = int(f);
-            points[j].x = (*m_layout)[f][std::size_t(k)];
-            moved[j] = 1;
-            m_moved.push_back({j, int(f), k});
-            any = true;
-          }
+      const auto [f, k] = corner[v];
+      if(j == std::size_t(-1) || f < 0) continue;
+      points[j].face = f;
+      points[j].x = (*m_layout)[std::size_t(f)][std::size_t(k)];
+      moved[j] = 1;
+      m_moved.push_back({j, f, k});
+      any = true;
     }
     return any;
   }
