@@ -135,6 +135,23 @@ private:
     return any;
   }
 
+  // Adds to m_unmerged the cones merged into a site of `tangled`, or, if none, those merged into a
+  // neighbour of one (a site whose star wraps around a thin part: the cone in the part gets a point of
+  // its own).
+  void add_cones_merged_near(const std::vector<int>& tangled)
+  {
+    auto is_tangled = [&](int x) { return std::find(tangled.begin(), tangled.end(), x) != tangled.end(); };
+    for(std::size_t c = 0; c < m_nb; ++c)
+      if(m_merged_into[c] >= 0 && is_tangled(m_merged_into[c])) m_unmerged.push_back({int(c), m_merged_into[c]});
+    if(!m_unmerged.empty()) return;
+    for(std::size_t c = 0; c < m_nb; ++c) {
+      if(m_merged_into[c] < 0) continue;
+      bool near = false;
+      for(int sp : spokes_of(m_merged_into[c])) near = near || is_tangled(head(sp));
+      if(near) m_unmerged.push_back({int(c), m_merged_into[c]});
+    }
+  }
+
   // Collapses the edge of h (x -> p) into p: the faces (x, p, q) and (p, x, r) go, their outer edges are
   // glued. false (nothing done) unless the link condition holds (x and p have q and r as their only
   // common neighbours, q != r) and the faces are glued simply.
@@ -472,20 +489,7 @@ private:
         round = 0;
         continue;
       }
-      // the cones merged into a tangled site: triangulate() may move points onto them
-      for(std::size_t c = 0; c < m_nb; ++c)
-        if(m_merged_into[c] >= 0 && std::find(tangled.begin(), tangled.end(), m_merged_into[c]) != tangled.end())
-          m_unmerged.push_back({int(c), m_merged_into[c]});
-      // none: the cones merged into a neighbour of a tangled site (a site whose star wraps around a thin
-      // part: the cone in the part gets a point of its own)
-      if(m_unmerged.empty())
-        for(std::size_t c = 0; c < m_nb; ++c) {
-          if(m_merged_into[c] < 0) continue;
-          bool near = false;
-          for(int sp : spokes_of(m_merged_into[c]))
-            near = near || std::find(tangled.begin(), tangled.end(), head(sp)) != tangled.end();
-          if(near) m_unmerged.push_back({int(c), m_merged_into[c]});
-        }
+      add_cones_merged_near(tangled);  // triangulate() may move points onto them
       const std::size_t loops = std::size_t(std::count_if(edges.begin(), edges.end(), [](const auto& e) { return e.first.first == e.first.second; }));
       throw Convergence_failure("dual mesh: " + std::to_string(repeated) + " pairs of sites are joined twice" +
                                     (loops ? " and " + std::to_string(loops) + " sites joined to themselves" : std::string()) +
