@@ -20,6 +20,7 @@
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/hyperbolic_embedding.h>
+#include <Aniso_conformal/internal/CVT/hyperbolic_voronoi.h>
 #include <Aniso_conformal/make_dupin_cyclide.h>
 #include <Aniso_conformal/make_subdivided_surface.h>
 #include <Aniso_conformal/Hyperbolic_domain.h>
@@ -146,6 +147,46 @@ BOOST_AUTO_TEST_CASE(hyperboloid_primitives)
   BOOST_TEST(ang[0] + ang[1] + ang[2] < pi);
   I::hyperbolic_corner_angles({{0.2, 0.3, 0.6}}, deg);
   BOOST_TEST(deg);
+}
+
+// The CVT's quadrature node (add_hyperbolic_node()) takes d^2 and d / sinh d from half the Minkowski
+// chord, by a series below h = 1/8 and a logarithm above: both agree with the direct formulas (asinh of
+// the chord, sinh) on either side of the switch, from coincident points to d = 6; the nodes of a whole
+// triangle computed once (hyperbolic_triangle_nodes()) give the integrals of integrate_hyperbolic_piece().
+BOOST_AUTO_TEST_CASE(hyperbolic_quadrature_node_matches_the_direct_formulas)
+{
+  namespace I = AC::internal;
+  const Eigen::Vector3d x = I::from_klein(Eigen::Vector2d(0.2, -0.1));
+  const Eigen::Matrix3d F = I::hyperbolic_frame(x, I::from_klein(Eigen::Vector2d(0.5, 0.3)));
+  std::size_t beyond_switch = 0, below_switch = 0;
+  for(double d : {0.0, 1e-9, 1e-4, 0.01, 0.1, 0.2, 0.249, 0.2495, 0.25, 0.251, 0.3, 1.0, 2.5, 6.0}) {
+    const Eigen::Vector3d y = F * Eigen::Vector3d(std::cosh(d), std::sinh(d) * 0.6, std::sinh(d) * 0.8);  // at distance d from x
+    const double w = 0.37;
+    I::Hyperbolic_cell_accumulator acc;
+    I::add_hyperbolic_node(y, w, x, acc);
+    const double dd = I::hyperbolic_distance(y, x);
+    BOOST_TEST(std::abs(dd - d) <= 1e-12 * std::max(1.0, d));
+    const double f = dd > 1e-8 ? dd / std::sinh(dd) : 1.0;
+    BOOST_TEST(std::abs(acc.mass - w) == 0.0);
+    BOOST_TEST((acc.moment - w * y).norm() == 0.0);
+    BOOST_TEST(std::abs(acc.energy - w * dd * dd) <= 1e-14 * std::max(1e-300, w * dd * dd) + 1e-300, "d = " << d);
+    BOOST_TEST((acc.gradient - 2 * w * f * Eigen::Vector3d(y.x(), -y.y(), -y.z())).norm() <= 1e-14 * acc.gradient.norm(), "d = " << d);
+    (0.5 * std::sqrt(std::max(0.0, I::minkowski_dot(Eigen::Vector3d(y - x), Eigen::Vector3d(y - x)))) <= 0.125 ? below_switch : beyond_switch)++;
+  }
+  BOOST_TEST(below_switch >= 5u);
+  BOOST_TEST(beyond_switch >= 5u);
+  // a whole triangle: its precomputed nodes give the piece integrals of the triangle itself
+  std::array<Eigen::Vector2d, 3> k = {{Eigen::Vector2d(0.1, 0.1), Eigen::Vector2d(0.35, 0.15), Eigen::Vector2d(0.2, 0.4)}};
+  const I::Background_triangle T = I::make_background_triangle(k, {{1.0, 2.0, 0.5}}, 0);
+  const Eigen::Vector3d g = I::normalize_on_hyperboloid(I::from_klein(k[0]) + I::from_klein(k[1]) + I::from_klein(k[2]));
+  const Eigen::Matrix3d G = I::hyperbolic_boost(g);
+  I::Hyperbolic_cell_accumulator direct, nodes;
+  I::integrate_hyperbolic_piece(T, G, T.p, 3, x, direct);
+  for(const auto& q : I::hyperbolic_triangle_nodes(T, G)) I::add_hyperbolic_node(q.y, q.w, x, nodes);
+  BOOST_TEST(direct.mass > 0);
+  BOOST_TEST(nodes.mass == direct.mass);
+  BOOST_TEST(nodes.energy == direct.energy);
+  BOOST_TEST((nodes.gradient - direct.gradient).norm() == 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(hyperbolic_embedding_of_the_eight)
