@@ -423,9 +423,23 @@ BOOST_AUTO_TEST_CASE(the_cow_goes_to_cones_when_the_sphere_fails)
 // part narrower than the sites' spacing, its link a b c c b: no site could be merged into it and the dual
 // was refused ("1 cone ... cannot be merged"); at 1500 a cone merged into a site left two edges doubled
 // and a loop. The dual now moves the nearest free site onto such a cone and triangulates again.
+namespace {
+
+// CGAL's femur (genus 2; test/data/cgal) and the curvature metric the corpus uses on it (stretch 5)
+AC::Input_surface read_femur() { return AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/femur.off"); }
+
+AC::Curvature_metric stretch_5_curvature_metric(const AC::Input_surface& s)
+{
+  AC::Curvature_metric_options o;
+  o.stretch_max = 5;
+  return AC::Curvature_metric(s, o);
+}
+
+} // namespace
+
 BOOST_AUTO_TEST_CASE(femur_goes_to_cones_with_free_sites_moved_onto_cones_at_its_thin_parts)
 {
-  const AC::Input_surface femur = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/femur.off");
+  const AC::Input_surface femur = read_femur();
   BOOST_REQUIRE(femur.genus() == 2);
   for(const std::size_t n : {std::size_t(1500), std::size_t(2000)}) {
     AC::Remeshing_result r;
@@ -457,10 +471,8 @@ BOOST_AUTO_TEST_CASE(femur_goes_to_cones_with_free_sites_moved_onto_cones_at_its
 // curvature at the cones.
 BOOST_AUTO_TEST_CASE(cone_placement_that_ends_flat_is_solved_again_with_flips_that_double_edges)
 {
-  const AC::Input_surface femur = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/femur.off");
-  AC::Curvature_metric_options o;
-  o.stretch_max = 5;
-  const AC::Curvature_metric metric(femur, o);
+  const AC::Input_surface femur = read_femur();
+  const AC::Curvature_metric metric = stretch_5_curvature_metric(femur);
   const std::size_t n = 2000;
   AC::Intrinsic_triangulation itri(femur, AC::compute_metric_square_roots(femur, metric));
   AC::refine_background(itri, femur, metric, n);
@@ -488,10 +500,8 @@ BOOST_AUTO_TEST_CASE(cone_placement_that_ends_flat_is_solved_again_with_flips_th
 // cone merged into a neighbour of the pair now gets the nearest free site moved onto it.
 BOOST_AUTO_TEST_CASE(femur_with_the_curvature_metric_remeshes_through_cones_with_a_site_moved_next_to_a_wrapped_star)
 {
-  const AC::Input_surface femur = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/femur.off");
-  AC::Curvature_metric_options o;
-  o.stretch_max = 5;
-  const AC::Curvature_metric metric(femur, o);
+  const AC::Input_surface femur = read_femur();
+  const AC::Curvature_metric metric = stretch_5_curvature_metric(femur);
   const std::size_t n = 2000;
   AC::Remeshing_result r;
   const AC::Remeshed_surface out =
