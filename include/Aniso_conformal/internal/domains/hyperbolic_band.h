@@ -81,7 +81,7 @@ public:
     m_seen_in_domain.assign(m_face_of_slot.size(), 0);
     // the cut: the edges glued by a non-trivial deck transformation, as midpoints and half lengths
     for(std::size_t h = 0; h < m_pairing.size(); ++h) {
-      if(m_pairing[h] == Eigen::Matrix3d::Identity()) continue;
+      if(!m_on_cut[h]) continue;
       const auto& c = m_corners[h / 3];
       const Eigen::Vector3d& a = c[h % 3];
       const Eigen::Vector3d& b = c[(h % 3 + 1) % 3];
