@@ -1113,6 +1113,139 @@ BOOST_AUTO_TEST_CASE(restricted_voronoi_shortcut_gives_the_clipped_integrals)
   BOOST_TEST(hits > tri.size() * 2 / 5);
 }
 
+// A projection searched from a nearby surface point (the surface optimiser's moves) finds the closest point
+// that the plain search finds: the hint only bounds the AABB tree's search. Points at up to a tenth of the
+// diagonal from their hint, on both sides of the surface, and a hint far from the point.
+BOOST_AUTO_TEST_CASE(projection_from_a_nearby_point_is_the_closest_point)
+{
+  const AC::Input_surface s = AC::make_ellipsoid(3);
+  std::mt19937 rng(3u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double diag = s.bounding_box_diagonal();
+  for(int k = 0; k < 300; ++k) {
+    const Eigen::Vector3d x(unit(rng), unit(rng), unit(rng));
+    const AC::Surface_point near = s.project(x);
+    const Eigen::Vector3d y = near.position + (0.1 * diag * std::abs(unit(rng))) * Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+    const AC::Surface_point plain = s.project(y), hinted = s.project(y, near);
+    BOOST_TEST((plain.position - hinted.position).norm() <= 1e-12 * diag);
+    BOOST_TEST((hinted.position - y).norm() <= (near.position - y).norm() + 1e-12 * diag);
+  }
+  const Eigen::Vector3d far(0.0, 0.0, 3.0);
+  const AC::Surface_point from_the_side = s.project(Eigen::Vector3d(3.0, 0.0, 0.0));
+  BOOST_TEST((s.project(far, from_the_side).position - s.project(far).position).norm() <= 1e-12 * diag);
+}
+
+// Clipping labels each new edge with the bisector that made it and keeps the labels of the edges it
+// shortens: the restricted Voronoi flood goes to the neighbours named on a piece's edges.
+BOOST_AUTO_TEST_CASE(clip_half_plane_labels_the_edges_it_makes)
+{
+  namespace I = AC::internal;
+  I::Small_polygon a, b, c;
+  a.assign(Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 0), Eigen::Vector2d(0, 2));
+  BOOST_TEST(!I::clip_half_plane(a, Eigen::Vector2d(1, 0), 3.0, b, 7));  // x <= 3 does not cut
+  BOOST_REQUIRE(I::clip_half_plane(a, Eigen::Vector2d(1, 0), 1.0, b, 7));  // x <= 1: a quadrilateral
+  BOOST_REQUIRE(b.n == 4);
+  // (0,0) -> (1,0) on T's edge, (1,0) -> (1,1) on the line, (1,1) -> (0,2) and (0,2) -> (0,0) on T's edges
+  const std::array<int, 4> labels = {{-1, 7, -1, -1}};
+  for(int i = 0; i < 4; ++i) BOOST_TEST(b.e[std::size_t(i)] == labels[std::size_t(i)]);
+  BOOST_TEST((b.p[1] - Eigen::Vector2d(1, 0)).norm() < 1e-15);
+  BOOST_TEST((b.p[2] - Eigen::Vector2d(1, 1)).norm() < 1e-15);
+  // y <= 0.5 through the quadrilateral: the edge on x = 1 keeps label 7 and the new one gets 9
+  BOOST_REQUIRE(I::clip_half_plane(b, Eigen::Vector2d(0, 1), 0.5, c, 9));
+  BOOST_REQUIRE(c.n == 4);
+  int sevens = 0, nines = 0;
+  for(int i = 0; i < c.n; ++i) {
+    sevens += c.e[std::size_t(i)] == 7;
+    nines += c.e[std::size_t(i)] == 9;
+  }
+  BOOST_TEST(sevens == 1);
+  BOOST_TEST(nines == 1);
+  // a corner on the line with the next one outside: the edge leaving it lies on the line
+  I::Small_polygon d;
+  BOOST_REQUIRE(I::clip_half_plane(a, Eigen::Vector2d(-1, 1), 0.0, d, 4));  // y <= x: (0,2) cut off, (0,0) on the line
+  BOOST_REQUIRE(d.n == 3);
+  BOOST_TEST(d.e[0] == -1);
+  BOOST_TEST(d.e[1] == -1);
+  BOOST_TEST(d.e[2] == 4);
+}
+
+namespace {
+// the Euclidean cell geometry counting the cells visited per triangle (bisector() is asked first for
+// each visited cell's clip, once per neighbour)
+struct Cells_counting_visits : AC::internal::Euclidean_cell_geometry {
+  Cells_counting_visits(const std::vector<AC::internal::Background_triangle>& tri, const std::vector<Eigen::Vector2d>& sites,
+                        const std::vector<int>& start, const std::vector<int>& nbr, std::set<std::pair<std::size_t, int>>& seen)
+    : Euclidean_cell_geometry(tri, sites, start, nbr), visits(&seen)
+  {}
+  AC::internal::Bisector bisector(std::size_t f, int s, int n, Eigen::Vector2d& a, double& b) const
+  {
+    visits->insert({f, s});  // one thread
+    return Euclidean_cell_geometry::bisector(f, s, n, a, b);
+  }
+  std::set<std::pair<std::size_t, int>>* visits;
+};
+} // namespace
+
+// On a background coarser than the sites (two triangles for 60 random sites) each triangle meets many
+// cells: the flood across the pieces' labelled edges finds every one of them (the integrals of each site
+// are those of clipping each triangle by all the other sites' bisectors) and visits no cell that misses the
+// triangle.
+BOOST_AUTO_TEST_CASE(restricted_voronoi_flood_visits_exactly_the_cells_that_meet_a_triangle)
+{
+  namespace I = AC::internal;
+  std::mt19937 rng(11u);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Eigen::Vector2d a(0, 0), b(1, 0), c(1, 1), d(0, 1);
+  auto rho = [](const Eigen::Vector2d& p) { return 1 + p.x() + 2 * p.y(); };
+  const std::vector<I::Background_triangle> tri = {I::make_background_triangle({{a, b, c}}, {{rho(a), rho(b), rho(c)}}, 0),
+                                                   I::make_background_triangle({{a, c, d}}, {{rho(a), rho(c), rho(d)}}, 1)};
+  std::vector<Eigen::Vector2d> sites;
+  for(int k = 0; k < 60; ++k) sites.emplace_back(unit(rng), unit(rng));
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel EK;
+  typedef CGAL::Triangulation_vertex_base_with_info_2<int, EK> Vb;
+  typedef CGAL::Delaunay_triangulation_2<EK, CGAL::Triangulation_data_structure_2<Vb>> DT;
+  DT dt;
+  std::vector<DT::Vertex_handle> handle;
+  for(std::size_t k = 0; k < sites.size(); ++k) {
+    handle.push_back(dt.insert(DT::Point(sites[k].x(), sites[k].y())));
+    handle.back()->info() = int(k);
+  }
+  std::vector<int> start, nbr;
+  I::delaunay_neighbours(dt, handle, start, nbr);
+  std::set<std::pair<std::size_t, int>> visits;
+  std::vector<I::Cell_accumulator> out;
+  I::integrate_restricted_voronoi(Cells_counting_visits(tri, sites, start, nbr, visits), sites.size(), start, nbr,
+                                  I::first_connected_site(start), 1, out);
+  BOOST_REQUIRE(out.size() == sites.size());
+  // brute force: each triangle clipped by the bisectors of each site with all the others
+  std::size_t pieces = 0;
+  double total = 0;
+  for(std::size_t s = 0; s < sites.size(); ++s) {
+    I::Cell_accumulator expected;
+    for(const auto& T : tri) {
+      std::vector<Eigen::Vector2d> poly(T.p.begin(), T.p.end()), next;
+      for(std::size_t n = 0; n < sites.size() && poly.size() >= 3; ++n) {
+        if(n == s) continue;
+        I::clip_half_plane(poly, 2.0 * (sites[n] - sites[s]), sites[n].squaredNorm() - sites[s].squaredNorm(), next);
+        poly.swap(next);
+      }
+      if(poly.size() < 3) continue;
+      I::Cell_accumulator piece;
+      I::integrate_polygon(poly, T.r0, T.rg, sites[s], piece);
+      pieces += piece.mass > 0;
+      expected += piece;
+    }
+    BOOST_TEST(std::abs(out[s].mass - expected.mass) <= 1e-12);
+    BOOST_TEST(std::abs(out[s].mx - expected.mx) <= 1e-12);
+    BOOST_TEST(std::abs(out[s].energy - expected.energy) <= 1e-12);
+    total += out[s].mass;
+  }
+  BOOST_TEST(std::abs(total - (tri[0].mass + tri[1].mass)) < 1e-12);
+  BOOST_TEST_MESSAGE("cells visited " << visits.size() << ", pieces " << pieces);
+  BOOST_TEST(pieces > 60u);  // the diagonal crosses cells: more pieces than sites
+  BOOST_TEST(visits.size() == pieces);
+}
+
 // The initial sites are drawn by the density of sites at the CVT's optimum, rho^(1/2) in two dimensions
 // (Gersho), not by rho: on a square whose right half has 16 times the density of its left half, 4 of
 // every 5 sites start in the right half (by rho: 16 of every 17), which is where the CVT would take them.

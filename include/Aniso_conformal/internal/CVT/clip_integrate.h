@@ -19,23 +19,29 @@ struct Cell_accumulator {
 };
 
 // A convex polygon with a fixed capacity: clipping a triangle by the half-planes of one Voronoi cell adds
-// at most one vertex per half-plane, and cells have far fewer than 120 Delaunay neighbours.
+// at most one vertex per half-plane, and cells have far fewer than 120 Delaunay neighbours. Each edge
+// carries a label: e[i] for the edge from p[i] to p[i + 1] (cyclically), -1 for the triangle's own edges
+// and the label given to clip_half_plane() for the edges its half-plane made (the Voronoi neighbour whose
+// bisector it lies on).
 struct Small_polygon {
   static constexpr int capacity = 128;
   std::array<Eigen::Vector2d, capacity> p;
+  std::array<int, capacity> e;
   int n = 0;
   void assign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c)
   {
     p[0] = a;
     p[1] = b;
     p[2] = c;
+    e[0] = e[1] = e[2] = -1;
     n = 3;
   }
 };
 
-// Sutherland-Hodgman clip of the convex polygon `in` by the half-plane a.p <= b, into `out`.
-// Returns false (and leaves `out` unspecified) if the half-plane does not cut `in`.
-inline bool clip_half_plane(const Small_polygon& in, const Eigen::Vector2d& a, double b, Small_polygon& out)
+// Sutherland-Hodgman clip of the convex polygon `in` by the half-plane a.p <= b, into `out`; the edges
+// along the half-plane's line get the label `label`, the others keep theirs. Returns false (and leaves
+// `out` unspecified) if the half-plane does not cut `in`.
+inline bool clip_half_plane(const Small_polygon& in, const Eigen::Vector2d& a, double b, Small_polygon& out, int label = -1)
 {
   double f[Small_polygon::capacity];
   bool cuts = false;
@@ -45,12 +51,17 @@ inline bool clip_half_plane(const Small_polygon& in, const Eigen::Vector2d& a, d
   }
   if(!cuts) return false;
   out.n = 0;
-  for(int i = 0; i < in.n; ++i) {
+  for(int i = 0; i < in.n && out.n + 1 < Small_polygon::capacity; ++i) {
     const int j = (i + 1 == in.n) ? 0 : i + 1;
     const double fp = f[i], fq = f[j];
-    if(fp <= 0 && out.n < Small_polygon::capacity) out.p[out.n++] = in.p[i];
-    if(((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) && out.n < Small_polygon::capacity)
+    if(fp <= 0) {  // p[i] kept; its edge leaves along the line when p[i] is on it and p[j] outside
+      out.e[out.n] = (fp == 0 && fq > 0) ? label : in.e[i];
+      out.p[out.n++] = in.p[i];
+    }
+    if((fp < 0 && fq > 0) || (fp > 0 && fq < 0)) {  // the edge crosses the line: leaving, then along it
+      out.e[out.n] = fp < 0 ? label : in.e[i];
       out.p[out.n++] = in.p[i] + (fp / (fp - fq)) * (in.p[j] - in.p[i]);
+    }
   }
   return true;
 }
@@ -97,7 +108,10 @@ inline void clip_half_plane(const std::vector<Eigen::Vector2d>& in, const Eigen:
 {
   Small_polygon p, q;
   p.n = int(std::min<std::size_t>(in.size(), Small_polygon::capacity));
-  for(int i = 0; i < p.n; ++i) p.p[i] = in[i];
+  for(int i = 0; i < p.n; ++i) {
+    p.p[i] = in[i];
+    p.e[i] = -1;
+  }
   const Small_polygon& r = clip_half_plane(p, a, b, q) ? q : p;
   out.assign(r.p.begin(), r.p.begin() + r.n);
 }

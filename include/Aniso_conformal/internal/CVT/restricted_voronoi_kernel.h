@@ -68,43 +68,31 @@ inline int first_connected_site(const std::vector<int>& start)
 
 // What a policy knows of the bisector of sites s and n over a background triangle T before clipping.
 enum class Bisector {
-  misses,   // the bisector leaves T whole on s's side: no clip, and n's cell does not meet T
-  meets,    // some corner of T is nearer to n: clip, and n's cell may meet T
-  untested  // clip; n's cell may meet T if a corner of T (in the frame) violates a.y <= b
+  misses,   // the bisector leaves T whole on s's side: no clip
+  meets,    // some corner of T is nearer to n: clip
+  untested  // clip (clip_half_plane() finds out whether it cuts)
 };
 
 namespace restricted_voronoi_detail {
 
-struct Flood_candidate {
-  int site;
-  bool tested;          // the policy has said the cell can meet T (Bisector::meets)
-  Eigen::Vector2d a;    // the half-plane a.y <= b of the points nearer to the cell's site than to `site`
-  double b;
-};
-
-// Clips T (in its frame) by the bisectors of site s in `poly_a`/`poly_b`; returns the clipped polygon
-// (fewer than 3 vertices: s's cell misses T) and whether any bisector cut it. `candidates` receives the
-// neighbours whose cells may meet T.
+// Clips T (in its frame) by the bisectors of site s with its Delaunay neighbours, from poly_a / poly_b;
+// returns the clipped polygon (fewer than 3 vertices: s's cell misses T), its edges labelled with the
+// neighbour whose bisector each lies on (-1 on T's own edges), and whether any bisector cut it.
 template <typename Policy>
 const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const std::vector<int>& start, const std::vector<int>& nbr,
-                                  Small_polygon& poly_a, Small_polygon& poly_b, std::vector<Flood_candidate>& candidates,
-                                  bool& clipped)
+                                  Small_polygon& poly_a, Small_polygon& poly_b, bool& clipped)
 {
   const auto& T = P.triangle(f);
   Small_polygon* poly = &poly_a;
   Small_polygon* tmp = &poly_b;
   poly->assign(T.p[0], T.p[1], T.p[2]);
   clipped = false;
-  candidates.clear();
   for(int j = start[std::size_t(s)]; j < start[std::size_t(s) + 1]; ++j) {
     const int n = nbr[std::size_t(j)];
-    Flood_candidate c;
-    c.site = n;
-    const Bisector side = P.bisector(f, s, n, c.a, c.b);
-    if(side == Bisector::misses) continue;
-    c.tested = side == Bisector::meets;
-    candidates.push_back(c);
-    if(clip_half_plane(*poly, c.a, c.b, *tmp)) {
+    Eigen::Vector2d a;
+    double b;
+    if(P.bisector(f, s, n, a, b) == Bisector::misses) continue;
+    if(clip_half_plane(*poly, a, b, *tmp, n)) {
       clipped = true;
       std::swap(poly, tmp);
       if(poly->n < 3) break;
@@ -120,9 +108,11 @@ const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const s
  * the Delaunay neighbours `start`/`nbr` (CSR form): out[i] receives the integrals of the part of the
  * triangles nearer to site i than to any other site. Each triangle is clipped against the cells it
  * meets: unless the policy knows it lies in one cell, a greedy walk finds the site nearest to it, then
- * a flood visits the neighbours whose cells can meet it; each visited cell clips the triangle by its
- * bisectors (Sutherland-Hodgman, clip_half_plane()), and its piece, or the whole triangle when no
- * bisector cuts it, is integrated (the exact restricted Voronoi diagram by clipping, as in Yan, Levy,
+ * a flood goes from cell to cell across the pieces' edges: each visited cell clips the triangle by its
+ * bisectors (Sutherland-Hodgman, clip_half_plane(), each new edge labelled with the neighbour whose
+ * bisector made it), its piece, or the whole triangle when no bisector cuts it, is integrated, and the
+ * neighbours that label an edge of the piece are visited next (the pieces of the cells that meet T tile
+ * T, so every one is reached across an edge; a neighbour whose bisector left no edge is not visited) (the exact restricted Voronoi diagram by clipping, as in Yan, Levy,
  * Liu, Sun and Wang 2009, "Isotropic remeshing with fast and exact computation of restricted Voronoi
  * diagram"). The triangles are split into 16 fixed chunks (consecutive, so a
  * walk starts next to the previous triangle's site when the triangles are in a space-filling-curve
@@ -162,7 +152,6 @@ void integrate_restricted_voronoi(const Policy& P, std::size_t ns, const std::ve
     std::vector<Accumulator>& A = acc[chunk];
     A.assign(ns, Accumulator());
     std::vector<int> stamp(ns, -1), stack;
-    std::vector<restricted_voronoi_detail::Flood_candidate> candidates;
     Small_polygon poly_a, poly_b;
     int seed = first;
     for(std::size_t f = chunk * nf / chunks; f < (chunk + 1) * nf / chunks; ++f) {
@@ -188,21 +177,19 @@ void integrate_restricted_voronoi(const Policy& P, std::size_t ns, const std::ve
         s = stack.back();
         stack.pop_back();
         bool clipped = false;
-        const Small_polygon* poly =
-            restricted_voronoi_detail::clip_to_cell(P, f, s, start, nbr, poly_a, poly_b, candidates, clipped);
+        const Small_polygon* poly = restricted_voronoi_detail::clip_to_cell(P, f, s, start, nbr, poly_a, poly_b, clipped);
         if(poly->n < 3) continue;  // s's cell misses T: nothing to add, no flood from it
         if(!clipped) {
           P.add_whole(f, s, A[std::size_t(s)]);
           continue;  // no neighbour's cell meets T
         }
         P.add_piece(f, s, *poly, A[std::size_t(s)]);
-        // n's cell can meet T only if a corner of T is nearer to n than to s
-        const auto& T = P.triangle(f);
-        for(const auto& c : candidates) {
-          if(stamp[std::size_t(c.site)] == int(f)) continue;
-          if(!c.tested && c.a.dot(T.p[0]) <= c.b && c.a.dot(T.p[1]) <= c.b && c.a.dot(T.p[2]) <= c.b) continue;
-          stamp[std::size_t(c.site)] = int(f);
-          stack.push_back(c.site);
+        // the cells that meet T are those reached across the bisector edges of the pieces found
+        for(int i = 0; i < poly->n; ++i) {
+          const int n = poly->e[std::size_t(i)];
+          if(n < 0 || stamp[std::size_t(n)] == int(f)) continue;
+          stamp[std::size_t(n)] = int(f);
+          stack.push_back(n);
         }
       }
     }

@@ -139,7 +139,7 @@ public:
   bool move_onto_input(std::size_t i, const Eigen::Vector3d& y, const Eigen::Vector3d& old_normal)
   {
     if(!y.allFinite()) return false;
-    Surface_point sp = m_surface.project(y);
+    Surface_point sp = m_surface.project(y, m_out.surface_points[i]);
     if(m_surface.is_planar()) sp.position.z() = 0;
     if(!m_surface.is_planar() && !(interpolated_normal(sp).dot(old_normal) > 0)) return false;
     m_out.surface_points[i] = sp;
