@@ -856,6 +856,79 @@ static_assert(AC::internal::Has_project_to_tangent_plane<Domain>::value, "the sp
 
 } // namespace
 
+// The triangulation kept between two evaluations and repaired by flips is the Delaunay triangulation
+// CGAL builds anew: the same neighbours after every site moved by a thirtieth of the spacing, five times
+// over (a few flips each: the CVT's later steps are of this size); a
+// move that folds it (two far sites swapped) is refused, and the integration then builds it again.
+BOOST_AUTO_TEST_CASE(sphere_delaunay_repaired_by_flips_is_the_one_built_anew)
+{
+  namespace I = AC::internal;
+  // well-spaced sites, as a CVT has them: the vertices of an icosphere, jittered (not cospherical)
+  std::vector<Point> sites = make_icosphere(3).points();
+  const std::size_t n = sites.size();
+  std::mt19937_64 rng(4u);
+  std::normal_distribution<double> N;
+  const double spacing = std::sqrt(4 * pi / double(n));
+  for(Point& x : sites) {
+    const auto [e1, e2] = tangent_frame(x);
+    x = (x + (spacing / 10) * (N(rng) * e1 + N(rng) * e2)).normalized();
+  }
+  auto neighbour_sets = [](const std::vector<int>& start, const std::vector<int>& nbr) {
+    std::vector<std::vector<int>> sets;
+    for(std::size_t i = 0; i + 1 < start.size(); ++i) {
+      sets.emplace_back(nbr.begin() + start[i], nbr.begin() + start[i + 1]);
+      std::sort(sets.back().begin(), sets.back().end());
+    }
+    return sets;
+  };
+  I::Sphere_delaunay sd;
+  I::build_sphere_delaunay(sites, sd);
+  I::Sphere_flip_triangulation flips;
+  BOOST_REQUIRE(flips.take(sd, n));
+  BOOST_TEST(flips.number_of_triangles() == 2 * n - 4);
+  std::size_t total_flips = 0;
+  for(int round = 0; round < 5; ++round) {
+    for(Point& x : sites) {
+      const auto [e1, e2] = tangent_frame(x);
+      x = (x + (spacing / 30) * (N(rng) * e1 + N(rng) * e2)).normalized();
+    }
+    BOOST_REQUIRE(flips.update(sites));
+    total_flips += flips.last_flips();
+    std::vector<int> start, nbr, start_cgal, nbr_cgal;
+    flips.neighbours(start, nbr);
+    I::Sphere_delaunay fresh;
+    I::build_sphere_delaunay(sites, fresh);
+    I::sphere_delaunay_neighbours(fresh, start_cgal, nbr_cgal);
+    BOOST_TEST((neighbour_sets(start, nbr) == neighbour_sets(start_cgal, nbr_cgal)));
+  }
+  BOOST_TEST_MESSAGE("flips over 5 moves: " << total_flips);
+  BOOST_TEST(total_flips > 0u);
+  // a fold: two sites far apart exchange their places (each fan now wraps the other's neighbours)
+  std::swap(sites[0], sites[n / 2]);
+  BOOST_TEST(!flips.update(sites));
+  BOOST_TEST(!flips.valid());
+  BOOST_TEST(!flips.update(sites));  // stays refused until a new triangulation is taken
+
+  // through the traits: the cells from the repaired triangulation are those of a fresh one, bit for bit
+  const Sphere_background bg(3, graded);
+  const Domain cached(bg.itri, bg.emb, 1);
+  std::vector<Point> s = random_sites(300, 8u);
+  std::vector<Domain::Cell> before, repaired, fresh_cells;
+  cached.integrate(s, before);
+  for(Point& x : s) {
+    const auto [e1, e2] = tangent_frame(x);
+    x = (x + 0.03 * (N(rng) * e1 + N(rng) * e2)).normalized();
+  }
+  cached.integrate(s, repaired);
+  Domain(bg.itri, bg.emb, 1).integrate(s, fresh_cells);
+  BOOST_REQUIRE(repaired.size() == fresh_cells.size());
+  for(std::size_t i = 0; i < s.size(); ++i) {
+    BOOST_TEST(repaired[i].mass == fresh_cells[i].mass);
+    BOOST_TEST(repaired[i].energy == fresh_cells[i].energy);
+    BOOST_TEST((repaired[i].centroid - fresh_cells[i].centroid).norm() == 0.0);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(total_mass_is_the_integral_of_the_density_and_cells_share_it)
 {
   for(auto cf : {&uniform, &graded}) {

@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/CVT/sphere_delaunay_flips.h>
 #include <Aniso_conformal/internal/CVT/spherical_voronoi.h>
 #include <Aniso_conformal/internal/CVT/stratified_samples.h>
 #include <Aniso_conformal/spherical_embedding.h>
@@ -23,6 +24,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
@@ -244,6 +246,10 @@ public:
    * computes mass, centroid (in space) and energy of the Voronoi cell of every site on the chordal
    * polyhedron. The sites are taken as directions (normalised). A site without a direction (zero, not
    * finite) or closer than CGAL's separation bound (`2^-23`) to another one has no cell (mass 0).
+   *
+   * The Delaunay triangulation of the sites is kept for the next call (shared by copies of the traits,
+   * one call at a time: a concurrent call builds its own): when the sites have moved little it is
+   * repaired by edge flips (internal/CVT/sphere_delaunay_flips.h) instead of being built again.
    */
   void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const
   {
@@ -252,13 +258,23 @@ public:
     for(std::size_t i = 0; i < ns; ++i) cells[i].centroid = sites[i];
     if(ns == 0) return;
     const std::vector<Point> unit = directions(sites);
-    internal::Sphere_delaunay sd;
-    internal::build_sphere_delaunay(unit, sd);
     std::vector<int> start, nbr;
-    internal::sphere_delaunay_neighbours(sd, start, nbr);
     int first = 0;
-    while(first < int(ns) && !sd.has_vertex(std::size_t(first))) ++first;
-    if(first == int(ns)) return;  // no site has a direction
+    std::unique_lock<std::mutex> lock(m_delaunay->mutex, std::try_to_lock);
+    if(lock.owns_lock() && m_delaunay->flips.update(unit)) {
+      m_delaunay->flips.neighbours(start, nbr);
+    } else {
+      internal::Sphere_delaunay sd;
+      internal::build_sphere_delaunay(unit, sd);
+      internal::sphere_delaunay_neighbours(sd, start, nbr);
+      while(first < int(ns) && !sd.has_vertex(std::size_t(first))) ++first;
+      if(first == int(ns)) return;  // no site has a direction
+      if(lock.owns_lock()) m_delaunay->flips.take(sd, ns);
+    }
+    if(lock.owns_lock()) lock.unlock();
+    // each site's neighbours in index order: the clipping order, hence the rounding, then depends on the
+    // triangulation only, not on how it was reached
+    for(std::size_t i = 0; i < ns; ++i) std::sort(nbr.begin() + start[i], nbr.begin() + start[i + 1]);
     std::vector<internal::Spherical_cell_accumulator> acc;
     internal::integrate_spherical_restricted_voronoi(m_tri, m_vertices, unit, start, nbr, first, m_threads, acc);
     for(std::size_t i = 0; i < ns; ++i) {
@@ -386,6 +402,12 @@ private:
   std::vector<internal::Spherical_background_triangle> m_tri;  // in Morton order
   std::vector<Eigen::Vector3d> m_vertices;                       // unit vectors of the background vertices, in Morton order
   std::shared_ptr<const Locator> m_locator;
+  // the sites' last Delaunay triangulation, repaired by flips at the next integrate()
+  struct Delaunay_cache {
+    std::mutex mutex;
+    internal::Sphere_flip_triangulation flips;
+  };
+  std::shared_ptr<Delaunay_cache> m_delaunay = std::make_shared<Delaunay_cache>();
   double m_area = 0, m_total_mass = 0;
   std::size_t m_degenerate = 0;
   unsigned m_threads = 1;

@@ -1,0 +1,199 @@
+// Copyright (c) 2026 Aniso_conformal developers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+
+#ifndef ANISO_CONFORMAL_INTERNAL_CVT_SPHERE_DELAUNAY_FLIPS_H
+#define ANISO_CONFORMAL_INTERNAL_CVT_SPHERE_DELAUNAY_FLIPS_H
+
+#include <Aniso_conformal/internal/CVT/spherical_voronoi.h>
+#include <Aniso_conformal/internal/conformal/spherical_map.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstddef>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+// The Delaunay triangulation of the CVT's sites on the sphere, kept from one energy evaluation to the
+// next and repaired by Lawson's edge flips. Between two evaluations the sites move by a fraction of
+// their spacing: the previous triangulation, with the sites at their new places, is still a
+// triangulation of the sphere (or is not, and is rebuilt), and a few flips make it Delaunay again,
+// where CGAL's Delaunay_triangulation_on_sphere_2 inserts every site anew (a fifth of the time of an
+// evaluation on 2000 sites, on one thread while the integration uses all).
+//
+// On the unit sphere the Delaunay triangulation is the convex hull of the sites: the edge (a, b) between
+// the triangles (c, a, b) and (d, b, a) is Delaunay when d is not strictly beyond the plane of (c, a, b),
+// seen from the centre; otherwise the flip to (c, a, d), (d, b, c) makes it so. As in the plane
+// (Lawson 1977; through a stereographic projection from a point inside no circumcircle the two criteria
+// are the same), flips from any triangulation end at the Delaunay one, which is unique up to
+// cospherical sites (any of their triangulations serves: the Voronoi edges between them are points).
+// The flips' precondition, a triangulation of the sphere, is checked first: every triangle on the same
+// side of the centre as seen from outside (CGAL's exact orientation predicate), and their signed
+// spherical areas summing to 4 pi (so they cover the sphere once, not twice).
+
+namespace Aniso_conformal {
+namespace internal {
+
+// The triangulation as index triples with their neighbours, and the flips that repair it.
+class Sphere_flip_triangulation {
+public:
+  // whether a triangulation is held (the last take() or update() succeeded)
+  bool valid() const { return m_valid; }
+  std::size_t number_of_triangles() const { return m_tri.size(); }
+  const std::array<int, 3>& triangle(std::size_t t) const { return m_tri[t]; }
+  std::size_t last_flips() const { return m_last_flips; }
+
+  // takes the triangulation `sd` of `ns` sites (build_sphere_delaunay()); false (and not valid) unless it
+  // covers the whole sphere with every site a vertex (no ghost faces, dimension 2)
+  bool take(const Sphere_delaunay& sd, std::size_t ns)
+  {
+    m_valid = false;
+    m_tri.clear();
+    m_adj.clear();
+    if(sd.dt.dimension() != 2 || sd.dt.number_of_ghost_faces() > 0) return false;
+    for(std::size_t i = 0; i < ns; ++i)
+      if(!sd.has_vertex(i)) return false;
+    std::unordered_map<const void*, int> index;
+    for(auto f = sd.dt.all_faces_begin(); f != sd.dt.all_faces_end(); ++f) {
+      index.emplace(static_cast<const void*>(&*f), int(m_tri.size()));
+      m_tri.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+    }
+    m_adj.resize(m_tri.size());
+    std::size_t t = 0;
+    for(auto f = sd.dt.all_faces_begin(); f != sd.dt.all_faces_end(); ++f, ++t)
+      for(int k = 0; k < 3; ++k) {
+        const auto it = index.find(static_cast<const void*>(&*f->neighbor(k)));  // CGAL: neighbor(k) faces vertex(k)
+        if(it == index.end()) return false;
+        m_adj[t][std::size_t(k)] = it->second;
+      }
+    m_sites = ns;
+    m_valid = m_tri.size() == 2 * ns - 4;
+    return m_valid;
+  }
+
+  // moves the sites to `unit` (as many as the triangulation holds) and flips it back to Delaunay; false
+  // (and not valid) if the moved triangulation no longer covers the sphere once or the flips exceed
+  // their bound (then the caller rebuilds with CGAL)
+  bool update(const std::vector<Eigen::Vector3d>& unit)
+  {
+    m_last_flips = 0;
+    if(!m_valid || unit.size() != m_sites) return m_valid = false;
+    m_points.resize(unit.size());
+    for(std::size_t i = 0; i < unit.size(); ++i) {
+      if(!unit[i].allFinite()) return m_valid = false;
+      m_points[i] = Point(unit[i].x(), unit[i].y(), unit[i].z());
+    }
+    double area = 0;
+    for(const auto& t : m_tri) {
+      if(side_of_centre(t) != CGAL::NEGATIVE) return m_valid = false;
+      area += spherical_triangle_area(unit[std::size_t(t[0])], unit[std::size_t(t[1])], unit[std::size_t(t[2])]);
+    }
+    const double pi = 3.14159265358979323846;
+    if(!(area > 2 * pi && area < 6 * pi)) return m_valid = false;  // 4 pi times the number of coverings
+    // Lawson: every edge once, and the four around each flip again
+    std::vector<std::pair<int, int>> stack;
+    stack.reserve(3 * m_tri.size());
+    for(int t = 0; t < int(m_tri.size()); ++t)
+      for(int k = 0; k < 3; ++k)
+        if(t < m_adj[std::size_t(t)][std::size_t(k)]) stack.emplace_back(t, k);
+    const std::size_t bound = 10 * m_tri.size() + 100;
+    while(!stack.empty()) {
+      const auto [t, k] = stack.back();
+      stack.pop_back();
+      if(!is_delaunay(t, k)) {
+        if(++m_last_flips > bound) return m_valid = false;
+        flip(t, k, stack);
+      }
+    }
+    return true;
+  }
+
+  // the Delaunay neighbours of every site in CSR form (neighbours of i: nbr[start[i] .. start[i+1])), as
+  // sphere_delaunay_neighbours() gives them
+  void neighbours(std::vector<int>& start, std::vector<int>& nbr) const
+  {
+    start.assign(m_sites + 1, 0);
+    for(const auto& t : m_tri)
+      for(int v : t) ++start[std::size_t(v) + 1];
+    for(std::size_t i = 0; i < m_sites; ++i) start[i + 1] += start[i];
+    nbr.assign(std::size_t(start[m_sites]), -1);
+    std::vector<int> next(start.begin(), start.end() - 1);
+    for(const auto& t : m_tri)  // each edge a -> b lies in one counterclockwise triangle, b -> a in the other
+      for(int k = 0; k < 3; ++k) nbr[std::size_t(next[std::size_t(t[std::size_t(k)])]++)] = t[std::size_t((k + 1) % 3)];
+  }
+
+private:
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+  typedef K::Point_3 Point;
+
+  // the side of the plane of t where the centre lies: NEGATIVE for a triangle counterclockwise seen
+  // from outside and away from the centre
+  CGAL::Orientation side_of_centre(const std::array<int, 3>& t) const
+  {
+    return CGAL::orientation(m_points[std::size_t(t[0])], m_points[std::size_t(t[1])], m_points[std::size_t(t[2])], Point(0, 0, 0));
+  }
+  // the corner of triangle u opposite its edge shared with triangle t
+  int corner_facing(int u, int t) const
+  {
+    for(int m = 0; m < 3; ++m)
+      if(m_adj[std::size_t(u)][std::size_t(m)] == t) return m;
+    return -1;
+  }
+  // whether the edge of t opposite corner k is Delaunay: the far corner d of the neighbour on the
+  // centre's side of t's plane (or on the plane: cospherical sites)
+  bool is_delaunay(int t, int k) const
+  {
+    const int u = m_adj[std::size_t(t)][std::size_t(k)];
+    const int m = corner_facing(u, t);
+    if(m < 0) return true;  // two edges shared with one triangle: only with four sites, which are Delaunay
+    const auto& T = m_tri[std::size_t(t)];
+    const Point& d = m_points[std::size_t(m_tri[std::size_t(u)][std::size_t(m)])];
+    return CGAL::orientation(m_points[std::size_t(T[0])], m_points[std::size_t(T[1])], m_points[std::size_t(T[2])], d) != CGAL::POSITIVE;
+  }
+  // replaces the slot of `old_t` in the adjacency of x (across the edge from a to b in x) by `new_t`
+  void relink(int x, int old_t, int new_t)
+  {
+    for(int j = 0; j < 3; ++j)
+      if(m_adj[std::size_t(x)][std::size_t(j)] == old_t) {
+        m_adj[std::size_t(x)][std::size_t(j)] = new_t;
+        return;
+      }
+  }
+  // (c, a, b) in t and (d, b, a) in u become (c, a, d) in t and (d, b, c) in u; their four outer edges
+  // go on the stack
+  void flip(int t, int k, std::vector<std::pair<int, int>>& stack)
+  {
+    const int u = m_adj[std::size_t(t)][std::size_t(k)];
+    const int m = corner_facing(u, t);
+    const auto T = m_tri[std::size_t(t)], U = m_tri[std::size_t(u)];
+    const auto At = m_adj[std::size_t(t)], Au = m_adj[std::size_t(u)];
+    const int c = T[std::size_t(k)], a = T[std::size_t((k + 1) % 3)], b = T[std::size_t((k + 2) % 3)];
+    const int d = U[std::size_t(m)];
+    const int t_bc = At[std::size_t((k + 1) % 3)], t_ca = At[std::size_t((k + 2) % 3)];  // across (b, c), (c, a)
+    const int u_ad = Au[std::size_t((m + 1) % 3)], u_db = Au[std::size_t((m + 2) % 3)];  // across (a, d), (d, b)
+    m_tri[std::size_t(t)] = {{c, a, d}};
+    m_adj[std::size_t(t)] = {{u_ad, u, t_ca}};
+    m_tri[std::size_t(u)] = {{d, b, c}};
+    m_adj[std::size_t(u)] = {{t_bc, t, u_db}};
+    relink(u_ad, u, t);
+    relink(t_bc, t, u);
+    stack.emplace_back(t, 0);
+    stack.emplace_back(t, 2);
+    stack.emplace_back(u, 0);
+    stack.emplace_back(u, 2);
+  }
+
+  std::vector<std::array<int, 3>> m_tri;  // counterclockwise seen from outside
+  std::vector<std::array<int, 3>> m_adj;  // m_adj[t][k]: the triangle across the edge opposite corner k
+  std::vector<Point> m_points;
+  std::size_t m_sites = 0, m_last_flips = 0;
+  bool m_valid = false;
+};
+
+} // namespace internal
+} // namespace Aniso_conformal
+
+#endif // ANISO_CONFORMAL_INTERNAL_CVT_SPHERE_DELAUNAY_FLIPS_H
