@@ -70,7 +70,7 @@ inline int first_connected_site(const std::vector<int>& start)
 enum class Bisector {
   misses,   // the bisector leaves T whole on s's side: no clip
   meets,    // some corner of T is nearer to n: clip
-  untested  // clip (clip_half_plane() finds out whether it cuts)
+  untested  // the kernel tests T's corners, then clips (clip_half_plane() finds out whether it cuts)
 };
 
 namespace restricted_voronoi_detail {
@@ -91,7 +91,10 @@ const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const s
     const int n = nbr[std::size_t(j)];
     Eigen::Vector2d a;
     double b;
-    if(P.bisector(f, s, n, a, b) == Bisector::misses) continue;
+    const Bisector side = P.bisector(f, s, n, a, b);
+    if(side == Bisector::misses) continue;
+    // T's corners on s's side: so is the polygon inside T (most of a cell's bisectors miss T)
+    if(side == Bisector::untested && a.dot(T.p[0]) <= b && a.dot(T.p[1]) <= b && a.dot(T.p[2]) <= b) continue;
     if(clip_half_plane(*poly, a, b, *tmp, n)) {
       clipped = true;
       std::swap(poly, tmp);
