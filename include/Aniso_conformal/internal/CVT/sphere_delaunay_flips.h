@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <unordered_map>
 #include <utility>
@@ -30,9 +31,10 @@
 // (Lawson 1977; through a stereographic projection from a point inside no circumcircle the two criteria
 // are the same), flips from any triangulation end at the Delaunay one, which is unique up to
 // cospherical sites (any of their triangulations serves: the Voronoi edges between them are points).
-// The flips' precondition, a triangulation of the sphere, is checked first: every triangle on the same
-// side of the centre as seen from outside (CGAL's exact orientation predicate), and their signed
-// spherical areas summing to 4 pi (so they cover the sphere once, not twice).
+// The flips' precondition, a triangulation of the sphere, is checked first: every triangle on the outer
+// side of the centre (CGAL's exact orientation predicate), and one direction inside exactly one of them
+// (with every triangle positive, a covering of the sphere counts its sheets at any point: once, not
+// twice; the sum of spherical areas, 4 pi per sheet, when the direction is too close to an edge).
 
 namespace Aniso_conformal {
 namespace internal {
@@ -86,13 +88,9 @@ public:
       if(!unit[i].allFinite()) return m_valid = false;
       m_points[i] = Point(unit[i].x(), unit[i].y(), unit[i].z());
     }
-    double area = 0;
-    for(const auto& t : m_tri) {
+    for(const auto& t : m_tri)
       if(side_of_centre(t) != CGAL::NEGATIVE) return m_valid = false;
-      area += spherical_triangle_area(unit[std::size_t(t[0])], unit[std::size_t(t[1])], unit[std::size_t(t[2])]);
-    }
-    const double pi = 3.14159265358979323846;
-    if(!(area > 2 * pi && area < 6 * pi)) return m_valid = false;  // 4 pi times the number of coverings
+    if(coverings(unit) != 1) return m_valid = false;
     // Lawson: every edge once, and the four around each flip again
     std::vector<std::pair<int, int>> stack;
     stack.reserve(3 * m_tri.size());
@@ -127,6 +125,28 @@ public:
 
 private:
   typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+
+  // How many times the triangles (all on the outer side of the centre) cover the sphere: the number of
+  // them that contain a fixed direction p (on the inner side of each edge's plane through the centre);
+  // when p lies within 1e-9 of an edge's plane, the sum of their spherical areas over 4 pi instead
+  int coverings(const std::vector<Eigen::Vector3d>& unit) const
+  {
+    const Eigen::Vector3d p = Eigen::Vector3d(0.5377, 0.1832, 0.8227).normalized();
+    int count = 0;
+    bool near_an_edge = false;
+    for(const auto& t : m_tri) {
+      const Eigen::Vector3d &a = unit[std::size_t(t[0])], &b = unit[std::size_t(t[1])], &c = unit[std::size_t(t[2])];
+      const double d0 = p.dot(a.cross(b)), d1 = p.dot(b.cross(c)), d2 = p.dot(c.cross(a));
+      near_an_edge = near_an_edge || (std::abs(d0) < 1e-9 && d1 > -1e-9 && d2 > -1e-9) ||
+                     (std::abs(d1) < 1e-9 && d0 > -1e-9 && d2 > -1e-9) || (std::abs(d2) < 1e-9 && d0 > -1e-9 && d1 > -1e-9);
+      count += d0 > 0 && d1 > 0 && d2 > 0;
+    }
+    if(!near_an_edge) return count;
+    double area = 0;
+    for(const auto& t : m_tri) area += spherical_triangle_area(unit[std::size_t(t[0])], unit[std::size_t(t[1])], unit[std::size_t(t[2])]);
+    const double pi = 3.14159265358979323846;
+    return int(std::lround(area / (4 * pi)));
+  }
   typedef K::Point_3 Point;
 
   // the side of the plane of t where the centre lies: NEGATIVE for a triangle counterclockwise seen
