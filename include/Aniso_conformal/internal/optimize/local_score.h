@@ -21,9 +21,9 @@
 namespace Aniso_conformal {
 namespace internal {
 
-// the figures of one triangle in the metric, computed exactly as compute_mesh_quality() does (Q_T the
-// mean of the corners' square roots, in the same order), so that what the optimiser accepts is what the
-// report measures
+// the figures of one triangle in the metric, computed as compute_mesh_quality() does (Q_T the mean of
+// the corners' square roots, in the same order), so that what the optimiser accepts is what the report
+// measures
 struct Triangle_figures {
   double G = 0;               // 2 sqrt(3) S / (p h)
   double smallest_angle = 0;  // degrees
@@ -44,11 +44,15 @@ inline Triangle_figures triangle_figures(const Eigen::Vector3d& a, const Eigen::
   const double half_perimeter = 0.5 * (l[0] + l[1] + l[2]);
   const double h = std::max({l[0], l[1], l[2]});
   t.G = (half_perimeter > 0 && h > 0) ? 2 * std::sqrt(3.0) * t.area / (half_perimeter * h) : 0.0;
-  t.smallest_angle = 1e300;
-  for(int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-    t.smallest_angle = std::min(t.smallest_angle, std::atan2(u.cross(v).norm(), u.dot(v)) * rad);
-  }
+  // the smallest angle faces the shortest edge (l[j] from p[j] to p[j + 1] faces corner j + 2): one atan2
+  // where compute_mesh_quality() takes the least of three, the same value but when two angles tie to
+  // within rounding
+  int j = 0;
+  for(int k = 1; k < 3; ++k)
+    if(l[k] < l[j]) j = k;
+  const int k = (j + 2) % 3;
+  const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+  t.smallest_angle = std::atan2(u.cross(v).norm(), u.dot(v)) * rad;
   return t;
 }
 
