@@ -641,6 +641,45 @@ BOOST_AUTO_TEST_CASE(a_long_open_tube_goes_to_cones_with_both_loops)
   BOOST_TEST(r.hausdorff_distance_relative < 0.01);
 }
 
+// A free site that the CVT leaves on a loop's chain of sites blocks the chain's edge; the run is then made
+// again from initial sites drawn with the next seed (Remeshing_result::reseeded says why). Measured on the
+// tube above at 400 vertices: seeds 0 and 6 of 0..7 needed it. Every seed remeshes, and a reseeded output
+// is the run of the next seed, bit for bit.
+BOOST_AUTO_TEST_CASE(a_site_blocking_a_loop_chain_makes_the_run_start_again_with_the_next_seed)
+{
+  const AC::Input_surface tube = make_open_tube(40.0, 16, 160);
+  const std::size_t n = 400;
+  std::vector<AC::Remeshed_surface> outs;
+  std::vector<std::string> reseeded;
+  for(unsigned seed = 0; seed < 8; ++seed) {
+    AC::Remeshing_result r;
+    BOOST_TEST_CONTEXT("seed " << seed)
+    {
+      outs.push_back(AC::remesh(tube, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).random_seed(seed)));
+      BOOST_TEST(outs.back().points.size() == n);
+      BOOST_TEST(check_open_tube_output(tube, outs.back()) == r.boundary_sites);
+      BOOST_TEST(r.inverted_triangles == 0u);
+      BOOST_TEST(r.quality.G_avg >= 0.90);
+      reseeded.push_back(r.reseeded);
+      if(!r.reseeded.empty()) {
+        BOOST_TEST(r.reseeded.find("came too close to the loop") != std::string::npos);
+        BOOST_TEST(r.discarded_seconds > 0.0);
+      }
+    }
+  }
+  std::size_t retries = 0;
+  for(unsigned seed = 0; seed + 1 < 8; ++seed)
+    if(!reseeded[seed].empty()) {
+      ++retries;
+      BOOST_TEST_CONTEXT("seed " << seed)
+      {
+        BOOST_TEST((outs[seed].points == outs[seed + 1].points));
+        BOOST_TEST((outs[seed].faces == outs[seed + 1].faces));
+      }
+    }
+  BOOST_TEST_MESSAGE("runs made again with the next seed: " << retries << " of 8");
+}
+
 BOOST_AUTO_TEST_CASE(cone_domain_takes_holes_through_patches)
 {
   // on request, a short tube (which the sphere also takes) goes through cones with its holes patched

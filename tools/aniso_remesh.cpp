@@ -148,6 +148,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     std::printf(")\n");
     if(result.repairs.any()) std::printf("repairs      %s\n", result.repairs.summary().c_str());
     if(!result.domain_choice.empty()) std::printf("domain       %s\n", result.domain_choice.c_str());
+    if(!result.reseeded.empty()) std::printf("reseeded     the CVT ran again with the next seed: %s\n", result.reseeded.c_str());
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu boundary corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
                 AC::domain_name(result.domain));

@@ -124,6 +124,10 @@ struct Remeshing_result {
   /// fixed sites and no crease site failed with this message, and the output is that of the run without
   /// any feature site
   std::string corners_not_kept;
+  /// empty, or why the first run of an input with boundary loops and no crease failed (a free site left on
+  /// a loop's chain of sites, which then has no output edge): the output is that of a second run whose
+  /// CVT starts from initial sites drawn with `random_seed + 1` (remesh_in_domain.h, run_pipeline())
+  std::string reseeded;
   /// how the domain was chosen when the automatic choice left the topology's own: "cones, because the
   /// sphere failed: <its reason>" (issue 16, item 5); empty otherwise
   std::string domain_choice;

@@ -93,7 +93,7 @@ inline nlohmann::json features_json(const Remeshing_result& r)
 
 /*!
  * \ingroup PkgAnisoConformalIO
- * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did); `input` and `background` (vertices, faces); `output`
+ * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did; `reseeded`, why a first run at a boundary loop failed, when the output is that of the run with the next seed); `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
  * histogram; `metric_edge_length`: the mean edge length in the metric and the standard deviation, min and
@@ -127,6 +127,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
   nlohmann::json j;
   j["domain"] = domain_name(r.domain);
   if(!r.domain_choice.empty()) j["domain_choice"] = r.domain_choice;  // why the automatic choice left the topology's own domain
+  if(!r.reseeded.empty()) j["reseeded"] = r.reseeded;  // why the first run failed at a boundary loop (the output: seed + 1)
   j["input"] = {{"vertices", r.input_vertices}, {"faces", r.input_faces}};
   j["background"] = {{"vertices", r.background_vertices}, {"faces", r.background_faces}};
   j["output"] = {{"vertices", q.number_of_vertices},
