@@ -469,30 +469,17 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
   const bool creases = !start.features.curves.empty();
-  if(!creases) {
-    if(surface.boundary_loops().empty()) {
-      Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr);
-      result.crease_run = Crease_run::NONE;
-      return out;
-    }
-    // with boundary loops: a free site that the CVT leaves on a loop's chain of sites blocks the chain's
-    // edge (remove_patch_triangles(); the 40-long open tube of test_cones at 400 vertices, seeds 0 and 6
-    // of 0..7): once, the CVT again from initial sites drawn with the next seed
-    const auto t0 = std::chrono::steady_clock::now();
+  if(!creases) {  // with loops, a run whose free site blocks a loop's chain edge goes again with the next seed
     std::string why;
-    try {
-      Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, false, nullptr);
-      result.crease_run = Crease_run::NONE;
-      return out;
-    } catch(const Convergence_failure& e) {
-      if(std::string(e.what()).find("came too close to the loop") == std::string::npos) throw;
-      why = e.what();
-    }
-    const double discarded = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    Remeshing_options again = options;
-    again.random_seed = options.random_seed + 1;
-    vis.on_stage_started(Stage::EDGE_LENGTHS);
-    Remeshed_surface out = finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, again, vis, false, nullptr);
+    double discarded = 0;
+    const bool loops = !surface.boundary_loops().empty();  // a first run with loops keeps the background
+    Remeshed_surface out = run_again_if_a_loop_is_blocked(loops, [&](bool again) {
+      Remeshing_options o = options;
+      o.random_seed += again ? 1u : 0u;
+      if(loops && !again) return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, o, vis, false, nullptr);
+      if(again) vis.on_stage_started(Stage::EDGE_LENGTHS);
+      return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, o, vis, false, nullptr);
+    }, why, discarded);
     result.crease_run = Crease_run::NONE;
     result.discarded_seconds += discarded;  // finish_pipeline() starts the result afresh: set after it
     result.reseeded = why;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <deque>
@@ -236,6 +237,30 @@ inline std::size_t recover_loop_edges(const Input_surface& closed, Remeshed_surf
   return recovered;
 }
 
+// The end of the message of remove_patch_triangles() when two consecutive sites of a loop are not joined:
+// a free site sits on the chain so close that no flip recovers the edge past it.
+constexpr const char* blocked_loop_reason = "a site came too close to the loop";
+
+// Runs `run(false)`; when `loops` and it fails because a free site blocks a loop's chain edge (the
+// Convergence_failure of remove_patch_triangles()), runs `run(true)` once (the caller draws the CVT's
+// initial sites with the next seed: another CVT, whose sites leave the chain alone), with the first
+// failure's message in `why` and its wall time in `discarded`. Any other failure, or a second one, is
+// thrown on. (A repair of the dual, moving the blocking site off the chain, would spare the second CVT.)
+template <typename Run>
+auto run_again_if_a_loop_is_blocked(bool loops, const Run& run, std::string& why, double& discarded) -> decltype(run(false))
+{
+  if(!loops) return run(false);
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    return run(false);
+  } catch(const Convergence_failure& e) {
+    if(std::string(e.what()).find(blocked_loop_reason) == std::string::npos) throw;
+    why = e.what();
+  }
+  discarded = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return run(true);
+}
+
 // Removes from `out` the dual triangles on the patch side of every loop's chain of sites (`first[l]`,
 // the index of loop l's first site among the sites, its sites following in order; `first.back()` the
 // first of the `apexes` apex sites, one a loop or none (run_pipeline_once()), removed too), and checks
@@ -271,7 +296,7 @@ inline std::pair<std::size_t, std::size_t> remove_patch_triangles(Remeshed_surfa
       if(inside == face_of.end() || outside == face_of.end())
         throw Convergence_failure("remesh(): the output does not join sites " + std::to_string(j) + " and " +
                                       std::to_string((j + 1) % k) + " of boundary loop " + std::to_string(l) +
-                                      " by an edge (a site came too close to the loop)",
+                                      " by an edge (" + blocked_loop_reason + ")",
                                   0);
       seam[{std::min(a, b), std::max(a, b)}] = 1;
       seeds.push_back(outside->second);
