@@ -36,13 +36,11 @@
 #include <Aniso_conformal/spherical_embedding.h>
 #include <Aniso_conformal/weighted_centroidal_Voronoi_tessellation.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 #include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 
 #include "mesh_checks.h"
 
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <cmath>
 #include <functional>
@@ -1080,17 +1078,10 @@ BOOST_AUTO_TEST_CASE(restricted_voronoi_shortcut_gives_the_clipped_integrals)
   for(int j = 0; j < 7; ++j)
     for(int i = 0; i < 7; ++i)
       sites.emplace_back((i + 0.25 + 0.5 * (j % 2) + 0.1 * (unit(rng) - 0.5)) / 7, (j + 0.5 + 0.1 * (unit(rng) - 0.5)) / 7);
-  typedef CGAL::Exact_predicates_inexact_constructions_kernel EK;
-  typedef CGAL::Triangulation_vertex_base_with_info_2<int, EK> Vb;
-  typedef CGAL::Delaunay_triangulation_2<EK, CGAL::Triangulation_data_structure_2<Vb>> DT;
-  DT dt;
-  std::vector<DT::Vertex_handle> handle;
-  for(std::size_t k = 0; k < sites.size(); ++k) {
-    handle.push_back(dt.insert(DT::Point(sites[k].x(), sites[k].y())));
-    handle.back()->info() = int(k);
-  }
+  I::Indexed_delaunay_2 delaunay;  // the plane's own (Planar_domain_traits::integrate())
+  delaunay.build(sites);
   std::vector<int> start, nbr;
-  I::delaunay_neighbours(dt, handle, start, nbr);
+  I::delaunay_neighbours(delaunay.dt, delaunay.handle, start, nbr);
   const int first = I::first_connected_site(start);
   std::vector<I::Cell_accumulator> clipped, shortcut;
   I::integrate_restricted_voronoi(Cells_always_clipped(tri, sites, start, nbr), sites.size(), start, nbr, first, 1, clipped);
@@ -1201,17 +1192,10 @@ BOOST_AUTO_TEST_CASE(restricted_voronoi_flood_visits_exactly_the_cells_that_meet
                                                    I::make_background_triangle({{a, c, d}}, {{rho(a), rho(c), rho(d)}}, 1)};
   std::vector<Eigen::Vector2d> sites;
   for(int k = 0; k < 60; ++k) sites.emplace_back(unit(rng), unit(rng));
-  typedef CGAL::Exact_predicates_inexact_constructions_kernel EK;
-  typedef CGAL::Triangulation_vertex_base_with_info_2<int, EK> Vb;
-  typedef CGAL::Delaunay_triangulation_2<EK, CGAL::Triangulation_data_structure_2<Vb>> DT;
-  DT dt;
-  std::vector<DT::Vertex_handle> handle;
-  for(std::size_t k = 0; k < sites.size(); ++k) {
-    handle.push_back(dt.insert(DT::Point(sites[k].x(), sites[k].y())));
-    handle.back()->info() = int(k);
-  }
+  I::Indexed_delaunay_2 delaunay;  // the plane's own (Planar_domain_traits::integrate())
+  delaunay.build(sites);
   std::vector<int> start, nbr;
-  I::delaunay_neighbours(dt, handle, start, nbr);
+  I::delaunay_neighbours(delaunay.dt, delaunay.handle, start, nbr);
   std::set<std::pair<std::size_t, int>> visits;
   std::vector<I::Cell_accumulator> out;
   I::integrate_restricted_voronoi(Cells_counting_visits(tri, sites, start, nbr, visits), sites.size(), start, nbr,

@@ -193,10 +193,7 @@ public:
   Surface_point project(const Eigen::Vector3d& p) const
   {
     if(!m_tree) build_tree();
-    auto res = m_tree->closest_point_and_primitive(K::Point_3(p.x(), p.y(), p.z()));
-    std::size_t f = std::size_t(res.second - m_triangles.begin());
-    Eigen::Vector3d q(res.first.x(), res.first.y(), res.first.z());
-    return point_in_face(f, barycentric(f, q));
+    return surface_point(m_tree->closest_point_and_primitive(K::Point_3(p.x(), p.y(), p.z())));
   }
 
   /// the point of the surface closest to `p`, as `project(p)`, searched from `near`, a point of this
@@ -213,11 +210,8 @@ public:
     const std::size_t v = near.vertices[std::size_t(k)];
     if(v >= m_vertex_face.size() || m_vertex_face[v] >= m_faces.size()) return project(p);
     const Eigen::Vector3d& h = m_points[v];
-    auto res = m_tree->closest_point_and_primitive(K::Point_3(p.x(), p.y(), p.z()),
-                                                   std::make_pair(K::Point_3(h.x(), h.y(), h.z()), m_triangles.cbegin() + std::ptrdiff_t(m_vertex_face[v])));
-    std::size_t f = std::size_t(res.second - m_triangles.begin());
-    Eigen::Vector3d q(res.first.x(), res.first.y(), res.first.z());
-    return point_in_face(f, barycentric(f, q));
+    return surface_point(m_tree->closest_point_and_primitive(
+        K::Point_3(p.x(), p.y(), p.z()), std::make_pair(K::Point_3(h.x(), h.y(), h.z()), m_triangles.cbegin() + std::ptrdiff_t(m_vertex_face[v]))));
   }
 
   /// barycentric coordinates of `q` (assumed in the plane of face `f`), clamped to the triangle
@@ -259,6 +253,14 @@ private:
   typedef std::vector<K::Triangle_3>::const_iterator Tri_iterator;
   typedef CGAL::AABB_triangle_primitive<K, Tri_iterator> Primitive;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> Tree;
+
+  // the surface point of a closest point and triangle found by the AABB tree
+  template <typename Point_and_primitive>
+  Surface_point surface_point(const Point_and_primitive& res) const
+  {
+    const std::size_t f = std::size_t(res.second - m_triangles.begin());
+    return point_in_face(f, barycentric(f, Eigen::Vector3d(res.first.x(), res.first.y(), res.first.z())));
+  }
 
   void build_tree() const
   {

@@ -114,8 +114,9 @@ const Small_polygon* clip_to_cell(const Policy& P, std::size_t f, int s, const s
  * a flood goes from cell to cell across the pieces' edges: each visited cell clips the triangle by its
  * bisectors (Sutherland-Hodgman, clip_half_plane(), each new edge labelled with the neighbour whose
  * bisector made it), its piece, or the whole triangle when no bisector cuts it, is integrated, and the
- * neighbours that label an edge of the piece are visited next (the pieces of the cells that meet T tile
- * T, so every one is reached across an edge; a neighbour whose bisector left no edge is not visited) (the exact restricted Voronoi diagram by clipping, as in Yan, Levy,
+ * neighbours that label an edge of the piece are visited next: the pieces of the cells that meet T tile
+ * T, so every one is reached across an edge, and a neighbour whose bisector left no edge is not visited
+ * (the exact restricted Voronoi diagram by clipping, as in Yan, Levy,
  * Liu, Sun and Wang 2009, "Isotropic remeshing with fast and exact computation of restricted Voronoi
  * diagram"). The triangles are split into 16 fixed chunks (consecutive, so a
  * walk starts next to the previous triangle's site when the triangles are in a space-filling-curve

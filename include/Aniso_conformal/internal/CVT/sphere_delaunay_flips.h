@@ -173,7 +173,7 @@ private:
     const Point& d = m_points[std::size_t(m_tri[std::size_t(u)][std::size_t(m)])];
     return CGAL::orientation(m_points[std::size_t(T[0])], m_points[std::size_t(T[1])], m_points[std::size_t(T[2])], d) != CGAL::POSITIVE;
   }
-  // replaces the slot of `old_t` in the adjacency of x (across the edge from a to b in x) by `new_t`
+  // replaces the slot of `old_t` in the adjacency of triangle x by `new_t`
   void relink(int x, int old_t, int new_t)
   {
     for(int j = 0; j < 3; ++j)
