@@ -1459,6 +1459,49 @@ BOOST_AUTO_TEST_CASE(surface_optimization_on_a_sphere_keeps_the_mesh_on_it_and_r
   BOOST_TEST(untouched.points == folded.points);
 }
 
+// The passes of the surface optimiser skip a vertex whose one-ring has not changed since its last visit
+// left it in place, and an edge whose quad has not changed since its last flip test kept it: the result
+// must be the one of passes that visit everything, bit for bit, with fewer visits.
+BOOST_AUTO_TEST_CASE(surface_optimization_skips_only_what_would_not_change)
+{
+  const AC::Input_surface input = uv_sphere(64, 32, 1.0);
+  const AC::Tensor_field_metric metric(
+    std::vector<Eigen::Matrix3d>(input.number_of_vertices(), Eigen::Vector3d(4, 1, 1).asDiagonal().toDenseMatrix()));
+  AC::Remeshed_surface start = on_the_input(input, uv_sphere(16, 10, 1.03));
+  const std::size_t v = 1 + 4 * 16 + 5, w = 1 + 4 * 16 + 6;  // a fold, as above, so that every pass has work
+  move_vertex(input, start, v, start.points[v] + 1.5 * (start.points[w] - start.points[v]));
+  AC::Remeshed_surface skipping = start, exhaustive = start;
+  AC::internal::Surface_optimizer<AC::Tensor_field_metric> a(input, metric, skipping), b(input, metric, exhaustive);
+  BOOST_REQUIRE(a.build());
+  BOOST_REQUIRE(b.build());
+  b.visit_every_vertex(true);
+  std::size_t changes = 0;
+  // as optimize_surface_mesh() does: rounds of flips, relocation and the angle pass, then rounds of the
+  // relaxed relocation and the angle pass (their floors changed once: the relaxed pass starts afresh)
+  for(int round = 0; round < 16; ++round) {
+    const bool first_phase = round < 8;
+    for(int pass = 0; pass < 4 && first_phase; ++pass) {
+      const std::size_t fa = a.flip_pass(), fb = b.flip_pass();
+      BOOST_TEST(fa == fb);
+      changes += fa;
+    }
+    const double floor = round < 12 ? 0.6 : 0.5;
+    const std::size_t ra = first_phase ? a.relocation_pass() : a.relocation_pass(true, floor, 35);
+    const std::size_t rb = first_phase ? b.relocation_pass() : b.relocation_pass(true, floor, 35);
+    const std::size_t aa = a.angle_pass(), ab = b.angle_pass();
+    BOOST_TEST(ra == rb);
+    BOOST_TEST(aa == ab);
+    changes += ra + aa;
+  }
+  a.write_faces();
+  b.write_faces();
+  BOOST_TEST(changes > 0u);
+  BOOST_TEST(skipping.points == exhaustive.points);  // bit for bit
+  BOOST_TEST(skipping.faces == exhaustive.faces);
+  BOOST_TEST_MESSAGE("vertex visits: " << a.visits() << " skipping, " << b.visits() << " visiting every vertex");
+  BOOST_TEST(a.visits() < b.visits());
+}
+
 // a thorn: the sphere `s` with its upper half pulled into a tip at (0, 0, 2) (a cone of half-angle 35
 // degrees there), its ring of latitude next to the tip shifted by `shift` along x
 AC::Input_surface thorn(const AC::Input_surface& s, double shift = 0)

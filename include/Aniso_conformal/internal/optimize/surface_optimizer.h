@@ -10,6 +10,7 @@
 #include <Aniso_conformal/Surface_point.h>
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/internal/optimize/local_score.h>
+#include <Aniso_conformal/internal/optimize/settled_marks.h>
 #include <Aniso_conformal/internal/optimize/triangle_orientation.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/tensor.h>
@@ -82,11 +83,17 @@ public:
       if(v < n && !m_mesh.is_isolated(V(Mesh::size_type(v))) && !m_mesh.is_border(V(Mesh::size_type(v)), false)) m_fixed[v] = 0;
     if(m_angle_pass_everywhere) find_sliding_vertices();
     m_start = m_out.points;
+    m_marks.reset(n, m_mesh.number_of_edges());
     return true;
   }
 
   // the number of boundary vertices that may slide along a straight piece of the input's boundary
   std::size_t sliding_vertices() const { return m_sliding; }
+  // the vertex visits of the passes so far (a vertex skipped as settled is not visited)
+  std::size_t visits() const { return m_visits; }
+  // `true`: the passes visit every vertex and test every edge, none skipped as settled (for the tests:
+  // the output must be the same)
+  void visit_every_vertex(bool on) { m_exhaustive = on; }
 
   const std::vector<Eigen::Matrix3d>& metric_square_roots() const { return m_Q; }
   // the vertices that never move (the sliding ones are not counted)
@@ -103,6 +110,9 @@ public:
       const H h = m_mesh.halfedge(e);
       const V a = m_mesh.source(h), b = m_mesh.target(h), c = m_mesh.target(m_mesh.next(h)),
               d = m_mesh.target(m_mesh.next(m_mesh.opposite(h)));
+      // an edge kept at its last test, its quad unchanged since, is kept again (settled_marks.h)
+      if(!m_exhaustive && m_marks.edge_settled(e.idx(), a.idx(), b.idx(), c.idx(), d.idx())) continue;
+      m_marks.edge_tested(e.idx());  // kept unless flipped below
       if(c == d || m_mesh.halfedge(c, d) != Mesh::null_halfedge()) continue;  // the flip would duplicate an edge
       if(!m_out.kept_edges.empty() &&
          std::binary_search(m_kept.begin(), m_kept.end(), std::array<std::size_t, 2>{{std::min<std::size_t>(a.idx(), b.idx()), std::max<std::size_t>(a.idx(), b.idx())}}))
@@ -126,6 +136,7 @@ public:
       }
       if(!keeps_the_shape(a, b, c, d, repairs)) continue;
       CGAL::Euler::flip_edge(h, m_mesh);
+      m_marks.changed({a.idx(), b.idx(), c.idx(), d.idx()});
       ++flips;
     }
     m_flipped = m_flipped || flips > 0;
@@ -163,7 +174,11 @@ public:
   // `angle_floor` (degrees)
   std::size_t relocation_pass(bool relaxed = false, double G_floor = 0, double angle_floor = 0)
   {
-    return for_each_movable_vertex([&](V v, const std::vector<F>& ring, const Local_score& before) {
+    if(relaxed && (G_floor != m_relaxed_floors[0] || angle_floor != m_relaxed_floors[1])) {
+      m_marks.forget(1);  // other floors: another pass
+      m_relaxed_floors[0] = G_floor, m_relaxed_floors[1] = angle_floor;
+    }
+    return for_each_movable_vertex(relaxed ? 1 : 0, [&](V v, const std::vector<F>& ring, const Local_score& before) {
       const std::size_t i = v.idx();
       // the centroid of the ring's triangles weighted by their area in the metric, and the plain mean of
       // the neighbours as a fallback
@@ -236,7 +251,7 @@ public:
   std::size_t angle_pass()
   {
     static constexpr double angle_pass_steps[] = {1.0, 0.5, 0.25, 0.125, 0.0625};  // of the way to each apex
-    return for_each_movable_vertex([&](V v, const std::vector<F>& ring, const Local_score& before) {
+    return for_each_movable_vertex(2, [&](V v, const std::vector<F>& ring, const Local_score& before) {
       const std::size_t i = v.idx();
       if(before.inverted > 0 || !(before.angle_min < 30)) return false;
       const Eigen::Vector3d p = P(v);
@@ -342,19 +357,29 @@ private:
   }
 
   // calls `visit(v, ring, before)` for every vertex that may move (free, or sliding along the boundary)
-  // with its one-ring and the ring's score; `visit` tries its moves and returns whether v moved. Returns
-  // the number of vertices moved.
+  // with its one-ring and the ring's score; `visit` tries its moves and returns whether v moved, leaving
+  // it exactly as it was if not. Returns the number of vertices moved. A vertex that the last visit of
+  // pass `kind` left in place is skipped while its one-ring is unchanged (settled_marks.h): the output
+  // is the one of visiting every vertex (CGAL's hand at 2000 vertices, one thread: the stage 0.247 ->
+  // 0.130 s, the same output).
   template <typename Visit>
-  std::size_t for_each_movable_vertex(Visit visit)
+  std::size_t for_each_movable_vertex(std::size_t kind, Visit visit)
   {
     std::size_t moved = 0;
     std::vector<F> ring;
     for(V v : m_mesh.vertices()) {
       const std::size_t i = v.idx();
       if(m_fixed[i] && !slides(i)) continue;
+      if(!m_exhaustive && m_marks.settled(kind, i, CGAL::vertices_around_target(m_mesh.halfedge(v), m_mesh))) continue;
+      ++m_visits;
       one_ring(v, ring);
       const Local_score before = ring_score(ring);
-      if(visit(v, ring, before)) ++moved;
+      if(visit(v, ring, before)) {
+        ++moved;
+        m_marks.changed(i);
+      } else {
+        m_marks.left_in_place(kind, i);
+      }
     }
     return moved;
   }
@@ -554,6 +579,10 @@ private:
   std::vector<std::array<std::size_t, 2>> m_kept;  // Remeshed_surface::kept_edges, sorted: never flipped
   bool m_angle_pass_everywhere;  // Surface_optimization::ALWAYS: sliding boundary vertices
   bool m_flipped = false;
+  Settled_marks m_marks;  // what the passes may skip
+  double m_relaxed_floors[2] = {-1, -1};
+  std::size_t m_visits = 0;
+  bool m_exhaustive = false;
 };
 
 } // namespace internal
