@@ -382,6 +382,28 @@ BOOST_AUTO_TEST_CASE(wrap_finds_sites_in_tiles_next_to_those_reached)
       }
   BOOST_TEST(wrapped == 2 * x.size() * emb.generators.size());
   BOOST_TEST(d.number_of_group_elements() > 1u);  // the tiles found were added
+
+  // a band grown by an energy evaluation: images of the sites by words of one to three generators lie
+  // in its tiles, found by the first loop over them, which skips a tile whose reference image is beyond
+  // the domain's reach from the point (never the one holding it)
+  std::vector<AC::Hyperbolic_klein_domain_traits::Cell> cells;
+  d.integrate(d.initial_sites(400, 1), cells);
+  const std::size_t elements = d.number_of_group_elements();
+  BOOST_TEST(elements > 20u);
+  const std::size_t ng = emb.generators.size();
+  for(std::size_t i = 0; i < x.size(); ++i)
+    for(std::size_t a = 0; a < ng; ++a) {
+      const Eigen::Matrix3d G = emb.generators[a] * emb.generators[(a + 1) % ng] * emb.generators[(a + 3) % ng];
+      for(const Eigen::Matrix3d& W : {Eigen::Matrix3d(emb.generators[a]), Eigen::Matrix3d(emb.generators[a] * emb.generators[(a + 1) % ng]), G}) {
+        const Eigen::Vector3d p = AC::internal::normalize_on_hyperboloid(W * x[i]);
+        Eigen::Vector3d image;
+        Eigen::Matrix3d T;
+        BOOST_REQUIRE(d.wrap(p, image, T));
+        // the site (emb.generators differ from the layout's pairings by rounding, carried along the
+        // word: up to 1.4e-4 here; another point of the domain would lie at its scale, about 1)
+        BOOST_TEST(AC::internal::hyperbolic_distance(image, x[i]) < 1e-3);
+      }
+    }
 }
 
 BOOST_AUTO_TEST_CASE(fig13_eight_meets_the_quality_bar)

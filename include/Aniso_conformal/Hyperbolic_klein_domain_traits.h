@@ -21,6 +21,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
@@ -142,6 +144,7 @@ public:
     std::vector<int> face_of_slot(nf);
     for(std::size_t i = 0; i < nf; ++i) face_of_slot[i] = m_tri[i].face;
     m_band = internal::Hyperbolic_band(itri, std::move(face_of_slot), m_slot, emb.side_pairing, emb.corner_hyperboloid);
+    m_cosh_tile_reach = std::cosh(m_band.reach_of_domain());
     m_total_mass = 0;
     m_whole.resize(nf);
     for(std::size_t i = 0; i < nf; ++i) {
@@ -185,7 +188,11 @@ public:
     Eigen::Vector3d bary = Eigen::Vector3d::Zero();
     const std::size_t reached = m_band.elements().size();
     for(std::size_t gi = 0; gi < reached; ++gi) {
-      // tiles in order of their distance: the fundamental domain first
+      // tiles in order of their distance: the fundamental domain first; a tile g D whose reference image
+      // lies farther from p than D's reach cannot hold p, nor lead the grid to locate it (a dot product
+      // instead of a location: couplingdown's sites that drifted across the cut tried up to thousands of
+      // tiles, 12 % of the run in Triangle_grid::locate())
+      if(gi > 0 && !(-internal::minkowski_dot(m_band.reference_images()[gi], p) <= m_cosh_tile_reach)) continue;
       const Eigen::Matrix3d Ti = gi == 0 ? Eigen::Matrix3d::Identity() : m_band.inverse_elements()[gi];
       const Point q = internal::normalize_on_hyperboloid(Ti * p);
       if(locate_klein(internal::to_klein(q), face, bary)) {
@@ -385,10 +392,24 @@ private:
     return false;
   }
 
+  // The triangle of each site at the last wrap_all(), tried first: sites move little between two energy
+  // evaluations, and the grid's cells hold many of the triangles where the layout is dense (couplingdown:
+  // Triangle_grid::locate() was 12 % of the run). A site strictly inside its old triangle (barycentric
+  // coordinates above 1e-12: no other triangle holds it, the layout being an embedding) is located there,
+  // any other by the grid, so the slots are the grid's. Shared by copies of the traits; a call that finds
+  // it in use does without it.
+  struct Slot_cache {
+    std::mutex mutex;
+    std::vector<int> slot;
+  };
+
   void wrap_all(const std::vector<Point>& sites, Wrapped& w) const
   {
     const std::size_t ns = sites.size();
     if(ns == 0) throw Invalid_input("Hyperbolic_klein_domain_traits: no site");
+    std::unique_lock<std::mutex> lock(m_slot_cache->mutex, std::try_to_lock);
+    std::vector<int>* last = lock.owns_lock() ? &m_slot_cache->slot : nullptr;
+    if(last && last->size() != ns) last->assign(ns, -1);
     w.points.resize(ns);
     w.T.resize(ns);
     w.slot.resize(ns);
@@ -401,9 +422,14 @@ private:
           throw Convergence_failure("hyperbolic domain: site " + std::to_string(i) + " left the neighbourhood of the fundamental domain", 0);
         m_band.ensure(m_band.reached() * 2 + 4 * m_face_size);
       }
-      int t = 0;
-      Eigen::Vector3d bary = Eigen::Vector3d::Zero();
-      locate_klein(internal::to_klein(w.points[i]), t, bary);
+      int t = last ? (*last)[i] : -1;
+      const Eigen::Vector2d k = internal::to_klein(w.points[i]);
+      if(t < 0 || !(internal::Triangle_grid::barycentric(m_tri[std::size_t(t)], k).minCoeff() > 1e-12)) {
+        Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+        t = 0;
+        locate_klein(k, t, bary);
+      }
+      if(last) (*last)[i] = t;
       w.slot[i] = std::size_t(t);
     }
   }
@@ -426,6 +452,8 @@ private:
   unsigned m_threads = 1;
   // the tiles explored so far (grown on demand; integrate() is const but the band is a cache)
   mutable internal::Hyperbolic_band m_band;
+  std::shared_ptr<Slot_cache> m_slot_cache = std::make_shared<Slot_cache>();  // wrap_all()
+  double m_cosh_tile_reach = std::numeric_limits<double>::infinity();  // wrap(): cosh of Hyperbolic_band::reach_of_domain()
 };
 
 } // namespace Aniso_conformal
