@@ -27,7 +27,8 @@ namespace internal {
 // of its last flip test that kept it (0: none).
 class Settled_marks {
 public:
-  static constexpr std::size_t kinds = 3;  // the vertex passes told apart (relocation, relaxed, angle)
+  // the vertex passes told apart
+  enum Pass : std::size_t { RELOCATION, RELAXED_RELOCATION, ANGLE, kinds };
 
   void reset(std::size_t vertices, std::size_t edges)
   {

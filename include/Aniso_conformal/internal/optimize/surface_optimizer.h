@@ -175,10 +175,10 @@ public:
   std::size_t relocation_pass(bool relaxed = false, double G_floor = 0, double angle_floor = 0)
   {
     if(relaxed && (G_floor != m_relaxed_floors[0] || angle_floor != m_relaxed_floors[1])) {
-      m_marks.forget(1);  // other floors: another pass
+      m_marks.forget(Settled_marks::RELAXED_RELOCATION);  // other floors: another pass
       m_relaxed_floors[0] = G_floor, m_relaxed_floors[1] = angle_floor;
     }
-    return for_each_movable_vertex(relaxed ? 1 : 0, [&](V v, const std::vector<F>& ring, const Local_score& before) {
+    return for_each_movable_vertex(relaxed ? Settled_marks::RELAXED_RELOCATION : Settled_marks::RELOCATION, [&](V v, const std::vector<F>& ring, const Local_score& before) {
       const std::size_t i = v.idx();
       // the centroid of the ring's triangles weighted by their area in the metric, and the plain mean of
       // the neighbours as a fallback
@@ -251,7 +251,7 @@ public:
   std::size_t angle_pass()
   {
     static constexpr double angle_pass_steps[] = {1.0, 0.5, 0.25, 0.125, 0.0625};  // of the way to each apex
-    return for_each_movable_vertex(2, [&](V v, const std::vector<F>& ring, const Local_score& before) {
+    return for_each_movable_vertex(Settled_marks::ANGLE, [&](V v, const std::vector<F>& ring, const Local_score& before) {
       const std::size_t i = v.idx();
       if(before.inverted > 0 || !(before.angle_min < 30)) return false;
       const Eigen::Vector3d p = P(v);
