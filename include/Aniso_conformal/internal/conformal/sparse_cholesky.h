@@ -24,9 +24,9 @@
 //
 // Reuse: the fill-reducing ordering of the first analysis (AMD) is kept for the whole solve, so an
 // intrinsic flip, which changes a few entries of the pattern, costs a symbolic analysis with that
-// ordering instead of a new ordering; and a factor serves as the preconditioner of conjugate gradients on
-// the next Newton systems (Hessians of nearby u), so that most Newton iterations cost a few triangular
-// solves instead of a factorisation. (A pattern kept fixed across flips, e.g. the union of every edge
+// ordering instead of a new ordering; and a factor, CHOLMOD's or LDLT's, serves as the preconditioner of
+// conjugate gradients on the next Newton systems (Hessians of nearby u), so that most Newton iterations
+// cost a few triangular solves instead of a factorisation. (A pattern kept fixed across flips, e.g. the union of every edge
 // met, would save only that symbolic analysis, a small part of a factorisation, at the price of fill.)
 
 #if defined(ANISO_CONFORMAL_USE_CHOLMOD) && !defined(ANISO_CONFORMAL_DISABLE_CHOLMOD)
@@ -238,12 +238,15 @@ private:
 
 /*
  * Solves the Newton systems H du = g of one conformal solve (H symmetric positive definite, or nearly).
- * With CHOLMOD, each system is first tried by conjugate gradients preconditioned with the factorisation
- * of an earlier H (at most `cg_iterations` iterations, relative residual `cg_tolerance`); when that does
- * not converge (the Hessian moved too far), H itself is factorised (Sparse_factor, analysed again only
- * when `pattern_changed`) and solved directly. The LDLT path factorises every system, as the solver did
- * before CHOLMOD, so that a build without CHOLMOD gives the results it gave then. Deterministic: the same
- * sequence of systems gives the same answers whatever the timing.
+ * Each system after the first is tried by conjugate gradients preconditioned with the factorisation of an
+ * earlier H (at most `cg_iterations` iterations, relative residual `cg_tolerance`), whichever backend made
+ * it; when that does not converge (the Hessian moved too far), H itself is factorised (Sparse_factor,
+ * analysed again only when `pattern_changed`) and solved directly. Measured (bench_paper, one thread):
+ * the 26k-vertex cyclide's flat-torus embedding 0.55 -> 0.30 s (3 LDLT factorisations -> 1 and 2 solves
+ * of 4 CG iterations), the 10k ellipsoid's sphere 0.18 -> 0.12 s, the outputs' quality the same to the
+ * printed digits (the Newton iterates differ at the CG tolerance). Until 2026-12-06 the LDLT path
+ * factorised every system. Deterministic: the same sequence of systems gives the same answers whatever
+ * the timing.
  */
 class Sparse_spd_solver {
 public:
@@ -251,9 +254,9 @@ public:
 
   std::size_t cg_iterations = 20;   // bound of one preconditioned CG attempt
   double cg_tolerance = 1e-10;      // its relative residual
-  // Systems with fewer unknowns go to Eigen's LDLT, as before CHOLMOD: below ~50k unknowns it is as fast
-  // (26k torus: 0.30 s against 0.27 s a factorisation; the 44k CT image grid: 0.18 s against 0.31 s) and
-  // keeps the results of small inputs as they were; at 104k CHOLMOD is 5x faster, at 415k 18x.
+  // Systems with fewer unknowns go to Eigen's LDLT: below ~50k unknowns it is about as fast or faster
+  // (26k torus: 0.12 s against 0.08 s a factorisation; the 45k CT image background: 0.16 s against 0.33 s,
+  // and its preconditioned CG iterations 5.6 ms against 19 ms); at 104k CHOLMOD is 5x faster, at 415k 18x.
   std::size_t cholmod_min_unknowns = 50000;
 
   // solves H x = b; `pattern_changed` tells that H's pattern differs from the last factorised one.
@@ -262,7 +265,7 @@ public:
   {
     m_pattern_changed = m_pattern_changed || pattern_changed;
     m_factor.cholmod_enabled = std::size_t(H.rows()) >= cholmod_min_unknowns;
-    if(m_have_factor && cg_iterations > 0 && m_factor.is_cholmod()) {
+    if(m_have_factor && cg_iterations > 0) {
       Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, Factor_preconditioner> cg;
       cg.setMaxIterations(Eigen::Index(cg_iterations));
       cg.setTolerance(cg_tolerance);
