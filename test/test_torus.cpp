@@ -291,6 +291,48 @@ BOOST_AUTO_TEST_CASE(periodic_cvt_integrates_exactly_and_its_dual_is_a_torus)
   BOOST_TEST(!domain.background_location(0, Eigen::Vector2d(std::numeric_limits<double>::quiet_NaN(), 0), face, bary));
 }
 
+BOOST_AUTO_TEST_CASE(delaunay_graph_repaired_by_flips_gives_the_integrals_of_a_new_one)
+{
+  // The periodic Delaunay triangulation is kept between integrations and repaired by flips: along a CVT's
+  // path, with sites crossing the fundamental cell's sides and a jump that breaks the triangulation, the
+  // integrals are bit for bit those of traits that triangulate afresh (one thread, and two: the split
+  // triangulation), and most integrations were repairs
+  const AC::Input_surface s = AC::make_dupin_cyclide(36, 24);
+  AC::Intrinsic_triangulation t = background(s, AC::Uniform_metric());
+  const AC::Flat_torus_embedding emb = AC::flat_torus_embedding(t);
+  AC::Euclidean_periodic_domain_traits domain(t, emb, 1);
+  const std::size_t n = 150;
+  std::vector<Eigen::Vector2d> x = domain.initial_sites(n, 5);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> jitter(0.0, 0.05 * std::sqrt(domain.area() / double(n)));
+  typedef AC::Euclidean_periodic_domain_traits::Cell Cell;
+  std::size_t compared = 0;
+  for(int step = 0; step < 24; ++step) {
+    std::vector<Cell> kept, fresh1, fresh2;
+    domain.integrate(x, kept);
+    AC::Euclidean_periodic_domain_traits(t, emb, 1).integrate(x, fresh1);
+    AC::Euclidean_periodic_domain_traits(t, emb, 2).integrate(x, fresh2);
+    for(std::size_t i = 0; i < n; ++i) {
+      BOOST_TEST(kept[i].mass == fresh1[i].mass);
+      BOOST_TEST(kept[i].energy == fresh1[i].energy);
+      BOOST_TEST((kept[i].centroid == fresh1[i].centroid));
+      BOOST_TEST(kept[i].mass == fresh2[i].mass);
+      BOOST_TEST(kept[i].energy == fresh2[i].energy);
+    }
+    ++compared;
+    // Lloyd's step with a little noise; some sites pushed across the cell's sides by a lattice vector
+    for(std::size_t i = 0; i < n; ++i) {
+      x[i] = kept[i].centroid + Eigen::Vector2d(jitter(rng), jitter(rng));
+      if(i % 37 == std::size_t(step) % 37) x[i] += domain.lattice()[0] - 2.0 * domain.lattice()[1];
+    }
+    if(step == 12) std::shuffle(x.begin(), x.end(), rng);  // every site elsewhere: no triangulation to repair
+  }
+  BOOST_TEST(compared == 24u);
+  BOOST_TEST(domain.delaunay_repairs() >= 20u);
+  BOOST_TEST(domain.delaunay_repairs() <= 22u);  // the first integration, and the one after the shuffle, built anew
+}
+
+
 // The Delaunay graph built as two halves on two threads is the graph of one triangulation: every
 // point with a triangle that matters has the same neighbours, and the same triangles matter; a margin
 // too narrow for the points is detected, not trusted.

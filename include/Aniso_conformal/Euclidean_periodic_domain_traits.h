@@ -10,6 +10,7 @@
 #include <Aniso_conformal/internal/CVT/quotient_triangles.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
 #include <Aniso_conformal/internal/CVT/split_delaunay.h>
+#include <Aniso_conformal/internal/CVT/torus_delaunay_flips.h>
 #include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 
 #include <Eigen/Core>
@@ -18,9 +19,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <memory>
+#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -40,10 +45,14 @@ namespace Aniso_conformal {
  * wide enough that every Voronoi cell meeting a background triangle is complete: the band starts at
  * three site spacings beyond the triangles' reach and is widened until every Delaunay circle that
  * matters lies inside it (a test, not a guess). The Delaunay graph of the sites and copies gives the
- * Voronoi diagram of the torus: with two threads or more it is built as two CGAL
- * `Delaunay_triangulation_2` of the two halves of the band, one per thread, whose fans are certified
- * against the whole band (one triangulation of the whole band where that fails; the same graph, so the
- * integrals do not depend on the number of threads); each background triangle is clipped against the cells
+ * Voronoi diagram of the torus. The first time, it is built as two CGAL `Delaunay_triangulation_2` of
+ * the two halves of the band, one per thread, whose fans are certified against the whole band (one
+ * triangulation of the whole band where that fails, or with one thread; the same graph, so the integrals
+ * do not depend on the number of threads); the triangulation of the torus it contains is kept (shared by
+ * copies of the traits, one call at a time) and at the next call repaired by edge flips for the sites'
+ * new places (internal/CVT/torus_delaunay_flips.h), the band's graph then read from it: the same graph
+ * where it matters, in a fraction of the time (CGAL again when the moved triangles no longer
+ * triangulate the torus). Each background triangle is clipped against the cells
  * it meets and the integrals of the copies are folded back onto their sites (first moments shifted by
  * the copy's lattice vector). CGAL's `Periodic_2_Delaunay_triangulation_2` is not used because it
  * handles only rectangular (axis-aligned) domains.
@@ -107,6 +116,7 @@ public:
     }
     m_grid.build(m_tri);
     m_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+    m_delaunay->flips.set_lattice(m_lattice, m_inverse, m_area);
   }
   /// @}
 
@@ -183,6 +193,10 @@ public:
 
   /// \name Integration
   /// @{
+
+  /// how many calls of `integrate()` (by this object and its copies) repaired the previous Delaunay
+  /// triangulation by flips instead of building one (diagnostics; the integrals are the same either way)
+  std::size_t delaunay_repairs() const { return m_delaunay->repairs; }
 
   /// computes mass, centroid and energy of the Voronoi cell of every site on the torus
   void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const
@@ -286,12 +300,13 @@ private:
   // the wrapped sites (indices 0 .. n-1, in `points`) and their translates in the band of half-widths
   // `m` around the fundamental cell, with the site each stands for
   void band_points(const std::vector<Point>& wrapped, const std::array<double, 2>& m, std::vector<Point>& points,
-                   std::vector<int>& original) const
+                   std::vector<int>& original, std::vector<internal::Torus_flip_triangulation::Offset>* offsets = nullptr) const
   {
     const std::size_t ns = wrapped.size();
     points.assign(wrapped.begin(), wrapped.end());
     original.resize(ns);
     for(std::size_t i = 0; i < ns; ++i) original[i] = int(i);
+    if(offsets) offsets->assign(ns, {{0, 0}});
     std::vector<Eigen::Vector2d> st(ns);
     for(std::size_t i = 0; i < ns; ++i) st[i] = m_inverse * wrapped[i];
     const int ks = int(std::ceil(m[0])), kt = int(std::ceil(m[1]));
@@ -303,6 +318,7 @@ private:
           if(a < -m[0] || a > 1 + m[0] || b < -m[1] || b > 1 + m[1]) continue;
           points.push_back(wrapped[s] + double(i) * m_lattice[0] + double(j) * m_lattice[1]);
           original.push_back(int(s));
+          if(offsets) offsets->push_back({{i, j}});
         }
       }
   }
@@ -339,6 +355,20 @@ private:
   {
     const std::size_t ns = wrapped.size();
     if(ns == 0) throw Invalid_input("Euclidean_periodic_domain_traits: no site");
+    std::unique_lock<std::mutex> lock(m_delaunay->mutex, std::try_to_lock);
+    if(lock.owns_lock() && m_delaunay->flips.update(wrapped) && fans_from_flips(m_delaunay->flips, wrapped, points, original, fans)) {
+      ++m_delaunay->repairs;
+      return;
+    }
+    cgal_fans(wrapped, points, original, fans);
+    if(lock.owns_lock()) m_delaunay->flips.take(points, original, fans.faces, ns);
+  }
+
+  // periodic_fans() by CGAL's triangulations of the band
+  void cgal_fans(const std::vector<Point>& wrapped, std::vector<Point>& points, std::vector<int>& original,
+                 internal::Delaunay_fans& fans) const
+  {
+    const std::size_t ns = wrapped.size();
     const double spacing = std::sqrt(m_area / double(ns));
     for(int attempt = 0; attempt < 8; ++attempt) {
       const std::array<double, 2> m = band_widths(ns, attempt);
@@ -358,6 +388,91 @@ private:
       if(complete) return;
     }
     band_too_narrow(ns);
+  }
+
+  // periodic_fans() from the triangulation of the torus `tf` (repaired for the sites `wrapped`): the band's
+  // points as cgal_fans() makes them, each with the translates of its site's neighbours in `tf` (a
+  // neighbour's translate outside the band is added as a point without neighbours of its own); false if
+  // no band up to cgal_fans()'s widest holds every Delaunay circle that matters
+  bool fans_from_flips(const internal::Torus_flip_triangulation& tf, const std::vector<Point>& wrapped, std::vector<Point>& points,
+                       std::vector<int>& original, internal::Delaunay_fans& fans) const
+  {
+    typedef internal::Torus_flip_triangulation::Offset Offset;
+    const std::size_t ns = wrapped.size();
+    std::vector<int> nstart;
+    std::vector<std::pair<int, Offset>> nn;
+    std::vector<Offset> offsets;
+    for(int attempt = 0; attempt < 8; ++attempt) {
+      const std::array<double, 2> m = band_widths(ns, attempt);
+      if(!band_holds_circles(tf, m)) continue;
+      band_points(wrapped, m, points, original, &offsets);
+      tf.neighbours(nstart, nn);
+      const std::size_t nb = points.size();
+      std::vector<int> cstart(ns + 1, 0), copies(nb);  // the band's points of each site
+      for(std::size_t e = 0; e < nb; ++e) ++cstart[std::size_t(original[e]) + 1];
+      for(std::size_t i = 0; i < ns; ++i) cstart[i + 1] += cstart[i];
+      std::vector<int> next(cstart.begin(), cstart.end() - 1);
+      for(std::size_t e = 0; e < nb; ++e) copies[std::size_t(next[std::size_t(original[e])]++)] = int(e);
+      std::unordered_map<std::uint64_t, int> extra;  // translates outside the band: (site, offset) -> point
+      fans = internal::Delaunay_fans();
+      fans.start.assign(nb + 1, 0);
+      for(std::size_t e = 0; e < nb; ++e) {
+        const int s = original[e];
+        fans.start[e + 1] = fans.start[e] + (nstart[std::size_t(s) + 1] - nstart[std::size_t(s)]);
+      }
+      fans.nbr.resize(std::size_t(fans.start[nb]));
+      for(std::size_t e = 0; e < nb; ++e) {
+        const int s = original[e];
+        int* out = fans.nbr.data() + fans.start[e];
+        for(int j = nstart[std::size_t(s)]; j < nstart[std::size_t(s) + 1]; ++j) {
+          const int n = nn[std::size_t(j)].first;
+          const Offset o{{offsets[e][0] + nn[std::size_t(j)].second[0], offsets[e][1] + nn[std::size_t(j)].second[1]}};
+          int found = -1;
+          for(int c = cstart[std::size_t(n)]; c < cstart[std::size_t(n) + 1] && found < 0; ++c) {
+            const Offset& oc = offsets[std::size_t(copies[std::size_t(c)])];
+            if(oc[0] == o[0] && oc[1] == o[1]) found = copies[std::size_t(c)];
+          }
+          if(found < 0) {
+            const std::uint64_t key = (std::uint64_t(std::uint32_t(n)) << 32) | (std::uint64_t(std::uint16_t(o[0])) << 16) |
+                                      std::uint64_t(std::uint16_t(o[1]));
+            const auto it = extra.emplace(key, int(points.size()));
+            if(it.second) {
+              points.push_back(wrapped[std::size_t(n)] + double(o[0]) * m_lattice[0] + double(o[1]) * m_lattice[1]);
+              original.push_back(n);
+            }
+            found = it.first->second;
+          }
+          *out++ = found;
+        }
+        std::sort(fans.nbr.begin() + fans.start[e], fans.nbr.begin() + fans.start[e + 1]);
+      }
+      fans.start.resize(points.size() + 1, fans.start[nb]);  // the added translates: no neighbours
+      return true;
+    }
+    return false;
+  }
+
+  // whether the band of half-widths m holds every Delaunay circle that matters (matters()): the translates
+  // of each triangle of `tf` that have a corner at a wrapped site or their circumcentre where the
+  // background triangles reach
+  bool band_holds_circles(const internal::Torus_flip_triangulation& tf, const std::array<double, 2>& m) const
+  {
+    for(std::size_t t = 0; t < tf.number_of_triangles(); ++t) {
+      const auto& T = tf.triangle(t);
+      const Eigen::Vector2d p = tf.position(T.v[0], T.o[0]), q = tf.position(T.v[1], T.o[1]) - p, r = tf.position(T.v[2], T.o[2]) - p;
+      const double d = 2 * (q.x() * r.y() - q.y() * r.x());
+      const Eigen::Vector2d rel((r.y() * q.squaredNorm() - q.y() * r.squaredNorm()) / d, (q.x() * r.squaredNorm() - r.x() * q.squaredNorm()) / d);
+      const Eigen::Vector2d c = p + rel;
+      const double radius = rel.norm() * (1 + 1e-12);
+      for(int k = 0; k < 3; ++k)
+        if(!circle_in_band(c - double(T.o[std::size_t(k)][0]) * m_lattice[0] - double(T.o[std::size_t(k)][1]) * m_lattice[1], radius, m))
+          return false;
+      const Eigen::Vector2d cs = m_inverse * c;
+      for(double i = std::ceil(-m_reach[0] - cs.x()); i <= std::floor(1 + m_reach[0] - cs.x()); ++i)
+        for(double j = std::ceil(-m_reach[1] - cs.y()); j <= std::floor(1 + m_reach[1] - cs.y()); ++j)
+          if(!circle_in_band(c + i * m_lattice[0] + j * m_lattice[1], radius, m)) return false;
+    }
+    return true;
   }
 
   // the same band in one CGAL triangulation, for the dual mesh and the pictures
@@ -393,6 +508,13 @@ private:
   // side; doubled when too narrow (it changes the time, never the result)
   mutable double m_split_margin = 4;
   mutable int m_split_failures = 0;  // consecutive
+  // the sites' last Delaunay triangulation of the torus, repaired by flips at the next integrate()
+  struct Delaunay_cache {
+    std::mutex mutex;
+    internal::Torus_flip_triangulation flips;
+    std::size_t repairs = 0;
+  };
+  std::shared_ptr<Delaunay_cache> m_delaunay = std::make_shared<Delaunay_cache>();
 };
 
 } // namespace Aniso_conformal
