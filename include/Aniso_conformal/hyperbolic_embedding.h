@@ -314,10 +314,15 @@ Hyperbolic_embedding hyperbolic_embedding(Intrinsic_triangulation& itri, const N
     for(int f = 0; f < nf; ++f) euclidean_area += internal::heron_area(itri.length(3 * f), itri.length(3 * f + 1), itri.length(3 * f + 2));
     emb.scale = std::sqrt(4 * pi * (emb.genus - 1) / euclidean_area);
     typename internal::Visitor_reference<NamedParameters>::type vis = internal::get_visitor(np);
+    // Below CHOLMOD's size every Newton system is factorised, as before 2026-12-06: with LDLT's factor
+    // reused as CG's preconditioner (the Euclidean solves' default), CGAL's turbine (genus 11) at 2000
+    // sites lost its hyperbolic remesh (a 77 s CVT ending in a doubled dual edge, against 6 s and G_avg
+    // 0.876): the hyperbolic path is that sensitive to the last bits of u, and the solve is a small part of it
+    internal::Newton_bounds bounds = internal::Newton_bounds::from(np);
+    bounds.reuse_ldlt_factor = false;
     internal::Conformal_solution sol =
         internal::solve_conformal_metric(itri, internal::Hyperbolic_vertex_scaling{emb.scale}, std::vector<char>(std::size_t(nv), 0),
-                                         std::vector<double>(std::size_t(nv), 0.0), internal::Newton_bounds::from(np), vis,
-                                         "hyperbolic embedding");
+                                         std::vector<double>(std::size_t(nv), 0.0), bounds, vis, "hyperbolic embedding");
     emb.u = std::move(sol.u);
     emb.iterations = sol.iterations;
     emb.residual = sol.residual;

@@ -58,6 +58,7 @@ struct Newton_bounds {
   double tolerance = defaults::conformal_tolerance;
   std::size_t flips_per_edge = defaults::max_flips_per_edge;
   std::size_t cholmod_min_unknowns = 50000;  // smaller systems go to Eigen's LDLT (Sparse_spd_solver)
+  bool reuse_ldlt_factor = true;             // LDLT's factor preconditions later systems (Sparse_spd_solver)
 
   template <typename NamedParameters>
   static Newton_bounds from(const NamedParameters& np)
@@ -143,6 +144,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
   Eigen::SparseMatrix<double> H(n, n);
   Sparse_spd_solver solver;
   solver.cholmod_min_unknowns = bounds.cholmod_min_unknowns;
+  solver.reuse_ldlt_factor = bounds.reuse_ldlt_factor;
   std::size_t degenerate = 0;
   residual = evaluate(sol.u, true, degenerate);
   for(; it < bounds.max_iterations && residual > bounds.tolerance; ++it) {

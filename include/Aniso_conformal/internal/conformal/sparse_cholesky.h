@@ -240,7 +240,7 @@ private:
  * Solves the Newton systems H du = g of one conformal solve (H symmetric positive definite, or nearly).
  * Each system after the first is tried by conjugate gradients preconditioned with the factorisation of an
  * earlier H (at most `cg_iterations` iterations, relative residual `cg_tolerance`), whichever backend made
- * it; when that does not converge (the Hessian moved too far), H itself is factorised (Sparse_factor,
+ * it (LDLT's unless `reuse_ldlt_factor` is false); when that does not converge (the Hessian moved too far), H itself is factorised (Sparse_factor,
  * analysed again only when `pattern_changed`) and solved directly. Measured (bench_paper, one thread):
  * the 26k-vertex cyclide's flat-torus embedding 0.55 -> 0.30 s (3 LDLT factorisations -> 1 and 2 solves
  * of 4 CG iterations), the 10k ellipsoid's sphere 0.18 -> 0.12 s, the outputs' quality the same to the
@@ -258,6 +258,9 @@ public:
   // (26k torus: 0.12 s against 0.08 s a factorisation; the 45k CT image background: 0.16 s against 0.33 s,
   // and its preconditioned CG iterations 5.6 ms against 19 ms); at 104k CHOLMOD is 5x faster, at 415k 18x.
   std::size_t cholmod_min_unknowns = 50000;
+  // false: LDLT's factor is not reused, every system below cholmod_min_unknowns is factorised (the
+  // hyperbolic embedding's choice, hyperbolic_embedding.h)
+  bool reuse_ldlt_factor = true;
 
   // solves H x = b; `pattern_changed` tells that H's pattern differs from the last factorised one.
   // Returns false with the reason in `failure` when no factorisation of H succeeded.
@@ -265,7 +268,7 @@ public:
   {
     m_pattern_changed = m_pattern_changed || pattern_changed;
     m_factor.cholmod_enabled = std::size_t(H.rows()) >= cholmod_min_unknowns;
-    if(m_have_factor && cg_iterations > 0) {
+    if(m_have_factor && cg_iterations > 0 && (m_factor.is_cholmod() || reuse_ldlt_factor)) {
       Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, Factor_preconditioner> cg;
       cg.setMaxIterations(Eigen::Index(cg_iterations));
       cg.setTolerance(cg_tolerance);
