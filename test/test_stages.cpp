@@ -45,6 +45,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <algorithm>
 #include <random>
 #include <set>
 #include <string>
@@ -1003,6 +1004,42 @@ BOOST_AUTO_TEST_CASE(cvt_integrates_exactly_and_decreases_the_energy)
   BOOST_TEST(std::abs(m.planar_area - 1) < 1e-9);
   for(std::size_t i = 0; i < out.points.size(); ++i)
     BOOST_TEST((out.points[i] - out.surface_points[i].position).norm() < 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(planar_delaunay_repaired_by_flips_gives_the_integrals_of_a_new_one)
+{
+  // The plane's Delaunay triangulation is kept between integrations and repaired by flips: along Lloyd
+  // steps with noise, a site taken out of the convex hull and back, and a shuffle, the integrals are bit
+  // for bit those of traits that triangulate afresh, and most integrations were repairs
+  const auto metric = AC::make_analytic_metric_2(AC::Fig6_metric());
+  const AC::Input_surface sq = AC::make_square_background(metric, 100);
+  AC::Intrinsic_triangulation t(sq, AC::compute_metric_square_roots(sq, metric));
+  AC::adjust_edge_lengths(t, sq);
+  const AC::Planar_embedding emb = AC::conformal_embedding(t);
+  AC::Planar_domain_traits domain(t, emb, 1);
+  std::vector<AC::Planar_domain_traits::Point> x = domain.initial_sites(150, 3);
+  const std::size_t fixed = domain.number_of_fixed_sites();
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> jitter(0.0, 0.05 * std::sqrt(1.0 / 150));
+  for(int step = 0; step < 24; ++step) {
+    std::vector<AC::Planar_domain_traits::Cell> kept, fresh;
+    domain.integrate(x, kept);
+    AC::Planar_domain_traits(t, emb, 2).integrate(x, fresh);
+    for(std::size_t i = 0; i < x.size(); ++i) {
+      BOOST_TEST(kept[i].mass == fresh[i].mass);
+      BOOST_TEST(kept[i].energy == fresh[i].energy);
+      BOOST_TEST((kept[i].centroid == fresh[i].centroid));
+    }
+    for(std::size_t i = fixed; i < x.size(); ++i) {
+      const Eigen::Vector2d y = kept[i].centroid + Eigen::Vector2d(jitter(rng), jitter(rng));
+      if(domain.contains(y)) x[i] = y;
+    }
+    if(step == 6) x[fixed] = Eigen::Vector2d(3, 0.5);  // outside the hull: the next call triangulates anew
+    if(step == 7) x[fixed] = Eigen::Vector2d(0.5, 0.5);
+    if(step == 14) std::shuffle(x.begin() + std::ptrdiff_t(fixed), x.end(), rng);
+  }
+  BOOST_TEST(domain.delaunay_repairs() >= 19u);
+  BOOST_TEST(domain.delaunay_repairs() <= 21u);  // the first call, the site outside and back, the shuffle
 }
 
 // The nearest-site walk of the restricted Voronoi integration aims at a point inside each triangle. At a

@@ -7,6 +7,7 @@
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
 #include <Aniso_conformal/conformal_embedding.h>
+#include <Aniso_conformal/internal/CVT/planar_delaunay_flips.h>
 #include <Aniso_conformal/internal/CVT/restricted_voronoi.h>
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/conformal/planar_boundary.h>
@@ -26,6 +27,8 @@
 #include <cstdint>
 #include <limits>
 #include <list>
+#include <memory>
+#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
@@ -252,14 +255,28 @@ public:
   /// \name Integration
   /// @{
 
-  /// computes mass, centroid and energy of the restricted Voronoi cell of every site
+  /// how many calls of `integrate()` (by this object and its copies) repaired the last Delaunay triangulation
+  std::size_t delaunay_repairs() const { return m_delaunay->repairs; }
+  /// computes mass, centroid and energy of the restricted Voronoi cell of every site. The Delaunay
+  /// triangulation of the sites is kept for the next call (shared by copies of the traits, one call at a
+  /// time) and repaired by edge flips when the sites have moved little (internal/CVT/planar_delaunay_flips.h);
+  /// each site's neighbours are taken in index order, so the integrals do not depend on which ran
   void integrate(const std::vector<Point>& sites, std::vector<Cell>& cells) const
   {
     const std::size_t ns = sites.size();
-    internal::Indexed_delaunay_2 d;
-    d.build(sites);
     std::vector<int> start, nbr;
-    internal::delaunay_neighbours(d.dt, d.handle, start, nbr);
+    std::unique_lock<std::mutex> lock(m_delaunay->mutex, std::try_to_lock);
+    if(lock.owns_lock() && m_delaunay->flips.update(sites)) {
+      m_delaunay->flips.neighbours(start, nbr);
+      ++m_delaunay->repairs;
+    } else {
+      internal::Indexed_delaunay_2 d;
+      d.build(sites);
+      internal::delaunay_neighbours(d.dt, d.handle, start, nbr);
+      if(lock.owns_lock()) m_delaunay->flips.take(d, ns);
+    }
+    if(lock.owns_lock()) lock.unlock();
+    for(std::size_t i = 0; i < ns; ++i) std::sort(nbr.begin() + start[i], nbr.begin() + start[i + 1]);
     std::vector<internal::Cell_accumulator> acc;
     internal::integrate_restricted_voronoi(m_tri, sites, start, nbr, m_threads, acc);
     cells.assign(ns, Cell());
@@ -566,6 +583,12 @@ private:
   double m_total_mass = 0, m_area = 0, m_adjusted_area = 0, m_perimeter = 0, m_metric_perimeter = 0, m_perimeter_metric_ratio = 1;
   internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
+  struct Delaunay_cache {  // the sites' last Delaunay triangulation, repaired by flips at the next integrate()
+    std::mutex mutex;
+    internal::Planar_flip_triangulation flips;
+    std::size_t repairs = 0;
+  };
+  std::shared_ptr<Delaunay_cache> m_delaunay = std::make_shared<Delaunay_cache>();
 };
 
 } // namespace Aniso_conformal

@@ -4,6 +4,7 @@
 #ifndef ANISO_CONFORMAL_INTERNAL_CVT_SPHERE_DELAUNAY_FLIPS_H
 #define ANISO_CONFORMAL_INTERNAL_CVT_SPHERE_DELAUNAY_FLIPS_H
 
+#include <Aniso_conformal/internal/CVT/lawson_flips.h>
 #include <Aniso_conformal/internal/CVT/spherical_voronoi.h>
 #include <Aniso_conformal/internal/conformal/spherical_map.h>
 
@@ -44,8 +45,8 @@ class Sphere_flip_triangulation {
 public:
   // whether a triangulation is held (the last take() or update() succeeded)
   bool valid() const { return m_valid; }
-  std::size_t number_of_triangles() const { return m_tri.size(); }
-  const std::array<int, 3>& triangle(std::size_t t) const { return m_tri[t]; }
+  std::size_t number_of_triangles() const { return m_mesh.tri.size(); }
+  const std::array<int, 3>& triangle(std::size_t t) const { return m_mesh.tri[t]; }
   std::size_t last_flips() const { return m_last_flips; }
 
   // takes the triangulation `sd` of `ns` sites (build_sphere_delaunay()); false (and not valid) unless it
@@ -53,26 +54,25 @@ public:
   bool take(const Sphere_delaunay& sd, std::size_t ns)
   {
     m_valid = false;
-    m_tri.clear();
-    m_adj.clear();
+    m_mesh.clear();
     if(sd.dt.dimension() != 2 || sd.dt.number_of_ghost_faces() > 0) return false;
     for(std::size_t i = 0; i < ns; ++i)
       if(!sd.has_vertex(i)) return false;
     std::unordered_map<const void*, int> index;
     for(auto f = sd.dt.all_faces_begin(); f != sd.dt.all_faces_end(); ++f) {
-      index.emplace(static_cast<const void*>(&*f), int(m_tri.size()));
-      m_tri.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+      index.emplace(static_cast<const void*>(&*f), int(m_mesh.tri.size()));
+      m_mesh.tri.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
     }
-    m_adj.resize(m_tri.size());
+    m_mesh.adj.resize(m_mesh.tri.size());
     std::size_t t = 0;
     for(auto f = sd.dt.all_faces_begin(); f != sd.dt.all_faces_end(); ++f, ++t)
       for(int k = 0; k < 3; ++k) {
         const auto it = index.find(static_cast<const void*>(&*f->neighbor(k)));  // CGAL: neighbor(k) faces vertex(k)
         if(it == index.end()) return false;
-        m_adj[t][std::size_t(k)] = it->second;
+        m_mesh.adj[t][std::size_t(k)] = it->second;
       }
     m_sites = ns;
-    m_valid = m_tri.size() == 2 * ns - 4;
+    m_valid = m_mesh.tri.size() == 2 * ns - 4;
     return m_valid;
   }
 
@@ -88,40 +88,21 @@ public:
       if(!unit[i].allFinite()) return m_valid = false;
       m_points[i] = Point(unit[i].x(), unit[i].y(), unit[i].z());
     }
-    for(const auto& t : m_tri)
+    for(const auto& t : m_mesh.tri)
       if(side_of_centre(t) != CGAL::NEGATIVE) return m_valid = false;
     if(coverings(unit) != 1) return m_valid = false;
-    // Lawson: every edge once, and the four around each flip again
-    std::vector<std::pair<int, int>> stack;
-    stack.reserve(3 * m_tri.size());
-    for(int t = 0; t < int(m_tri.size()); ++t)
-      for(int k = 0; k < 3; ++k)
-        if(t < m_adj[std::size_t(t)][std::size_t(k)]) stack.emplace_back(t, k);
-    const std::size_t bound = 10 * m_tri.size() + 100;
-    while(!stack.empty()) {
-      const auto [t, k] = stack.back();
-      stack.pop_back();
-      if(!is_delaunay(t, k)) {
-        if(++m_last_flips > bound) return m_valid = false;
-        flip(t, k, stack);
-      }
-    }
-    return true;
+    const auto is_delaunay = [&](int t, int, int u, int m) {
+      // the far corner d of the neighbour on the centre's side of t's plane (or on it: cospherical sites)
+      const auto& T = m_mesh.tri[std::size_t(t)];
+      const Point& d = m_points[std::size_t(m_mesh.tri[std::size_t(u)][std::size_t(m)])];
+      return CGAL::orientation(m_points[std::size_t(T[0])], m_points[std::size_t(T[1])], m_points[std::size_t(T[2])], d) != CGAL::POSITIVE;
+    };
+    return m_valid = m_mesh.make_delaunay(is_delaunay, 10 * m_mesh.tri.size() + 100, m_last_flips);
   }
 
   // the Delaunay neighbours of every site in CSR form (neighbours of i: nbr[start[i] .. start[i+1])), as
   // sphere_delaunay_neighbours() gives them
-  void neighbours(std::vector<int>& start, std::vector<int>& nbr) const
-  {
-    start.assign(m_sites + 1, 0);
-    for(const auto& t : m_tri)
-      for(int v : t) ++start[std::size_t(v) + 1];
-    for(std::size_t i = 0; i < m_sites; ++i) start[i + 1] += start[i];
-    nbr.assign(std::size_t(start[m_sites]), -1);
-    std::vector<int> next(start.begin(), start.end() - 1);
-    for(const auto& t : m_tri)  // each edge a -> b lies in one counterclockwise triangle, b -> a in the other
-      for(int k = 0; k < 3; ++k) nbr[std::size_t(next[std::size_t(t[std::size_t(k)])]++)] = t[std::size_t((k + 1) % 3)];
-  }
+  void neighbours(std::vector<int>& start, std::vector<int>& nbr) const { m_mesh.neighbours(m_sites, start, nbr); }
 
 private:
   typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -134,7 +115,7 @@ private:
     const Eigen::Vector3d p = Eigen::Vector3d(0.5377, 0.1832, 0.8227).normalized();
     int count = 0;
     bool near_an_edge = false;
-    for(const auto& t : m_tri) {
+    for(const auto& t : m_mesh.tri) {
       const Eigen::Vector3d &a = unit[std::size_t(t[0])], &b = unit[std::size_t(t[1])], &c = unit[std::size_t(t[2])];
       const double d0 = p.dot(a.cross(b)), d1 = p.dot(b.cross(c)), d2 = p.dot(c.cross(a));
       near_an_edge = near_an_edge || (std::abs(d0) < 1e-9 && d1 > -1e-9 && d2 > -1e-9) ||
@@ -143,7 +124,7 @@ private:
     }
     if(!near_an_edge) return count;
     double area = 0;
-    for(const auto& t : m_tri) area += spherical_triangle_area(unit[std::size_t(t[0])], unit[std::size_t(t[1])], unit[std::size_t(t[2])]);
+    for(const auto& t : m_mesh.tri) area += spherical_triangle_area(unit[std::size_t(t[0])], unit[std::size_t(t[1])], unit[std::size_t(t[2])]);
     const double pi = 3.14159265358979323846;
     return int(std::lround(area / (4 * pi)));
   }
@@ -155,59 +136,7 @@ private:
   {
     return CGAL::orientation(m_points[std::size_t(t[0])], m_points[std::size_t(t[1])], m_points[std::size_t(t[2])], Point(0, 0, 0));
   }
-  // the corner of triangle u opposite its edge shared with triangle t
-  int corner_facing(int u, int t) const
-  {
-    for(int m = 0; m < 3; ++m)
-      if(m_adj[std::size_t(u)][std::size_t(m)] == t) return m;
-    return -1;
-  }
-  // whether the edge of t opposite corner k is Delaunay: the far corner d of the neighbour on the
-  // centre's side of t's plane (or on the plane: cospherical sites)
-  bool is_delaunay(int t, int k) const
-  {
-    const int u = m_adj[std::size_t(t)][std::size_t(k)];
-    const int m = corner_facing(u, t);
-    if(m < 0) return true;  // two edges shared with one triangle: only with four sites, which are Delaunay
-    const auto& T = m_tri[std::size_t(t)];
-    const Point& d = m_points[std::size_t(m_tri[std::size_t(u)][std::size_t(m)])];
-    return CGAL::orientation(m_points[std::size_t(T[0])], m_points[std::size_t(T[1])], m_points[std::size_t(T[2])], d) != CGAL::POSITIVE;
-  }
-  // replaces the slot of `old_t` in the adjacency of triangle x by `new_t`
-  void relink(int x, int old_t, int new_t)
-  {
-    for(int j = 0; j < 3; ++j)
-      if(m_adj[std::size_t(x)][std::size_t(j)] == old_t) {
-        m_adj[std::size_t(x)][std::size_t(j)] = new_t;
-        return;
-      }
-  }
-  // (c, a, b) in t and (d, b, a) in u become (c, a, d) in t and (d, b, c) in u; their four outer edges
-  // go on the stack
-  void flip(int t, int k, std::vector<std::pair<int, int>>& stack)
-  {
-    const int u = m_adj[std::size_t(t)][std::size_t(k)];
-    const int m = corner_facing(u, t);
-    const auto T = m_tri[std::size_t(t)], U = m_tri[std::size_t(u)];
-    const auto At = m_adj[std::size_t(t)], Au = m_adj[std::size_t(u)];
-    const int c = T[std::size_t(k)], a = T[std::size_t((k + 1) % 3)], b = T[std::size_t((k + 2) % 3)];
-    const int d = U[std::size_t(m)];
-    const int t_bc = At[std::size_t((k + 1) % 3)], t_ca = At[std::size_t((k + 2) % 3)];  // across (b, c), (c, a)
-    const int u_ad = Au[std::size_t((m + 1) % 3)], u_db = Au[std::size_t((m + 2) % 3)];  // across (a, d), (d, b)
-    m_tri[std::size_t(t)] = {{c, a, d}};
-    m_adj[std::size_t(t)] = {{u_ad, u, t_ca}};
-    m_tri[std::size_t(u)] = {{d, b, c}};
-    m_adj[std::size_t(u)] = {{t_bc, t, u_db}};
-    relink(u_ad, u, t);
-    relink(t_bc, t, u);
-    stack.emplace_back(t, 0);
-    stack.emplace_back(t, 2);
-    stack.emplace_back(u, 0);
-    stack.emplace_back(u, 2);
-  }
-
-  std::vector<std::array<int, 3>> m_tri;  // counterclockwise seen from outside
-  std::vector<std::array<int, 3>> m_adj;  // m_adj[t][k]: the triangle across the edge opposite corner k
+  Flip_adjacency m_mesh;  // counterclockwise seen from outside
   std::vector<Point> m_points;
   std::size_t m_sites = 0, m_last_flips = 0;
   bool m_valid = false;
