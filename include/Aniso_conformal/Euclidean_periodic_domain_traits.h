@@ -509,11 +509,7 @@ private:
   mutable double m_split_margin = 4;
   mutable int m_split_failures = 0;  // consecutive
   // the sites' last Delaunay triangulation of the torus, repaired by flips at the next integrate()
-  struct Delaunay_cache {
-    std::mutex mutex;
-    internal::Torus_flip_triangulation flips;
-    std::size_t repairs = 0;
-  };
+  typedef internal::Flip_cache<internal::Torus_flip_triangulation> Delaunay_cache;
   std::shared_ptr<Delaunay_cache> m_delaunay = std::make_shared<Delaunay_cache>();
 };
 

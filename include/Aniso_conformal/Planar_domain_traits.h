@@ -583,11 +583,8 @@ private:
   double m_total_mass = 0, m_area = 0, m_adjusted_area = 0, m_perimeter = 0, m_metric_perimeter = 0, m_perimeter_metric_ratio = 1;
   internal::Triangle_grid m_grid;
   unsigned m_threads = 1;
-  struct Delaunay_cache {  // the sites' last Delaunay triangulation, repaired by flips at the next integrate()
-    std::mutex mutex;
-    internal::Planar_flip_triangulation flips;
-    std::size_t repairs = 0;
-  };
+  // the sites' last Delaunay triangulation, repaired by flips at the next integrate()
+  typedef internal::Flip_cache<internal::Planar_flip_triangulation> Delaunay_cache;
   std::shared_ptr<Delaunay_cache> m_delaunay = std::make_shared<Delaunay_cache>();
 };
 

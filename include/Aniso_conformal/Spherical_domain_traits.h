@@ -403,10 +403,7 @@ private:
   std::vector<Eigen::Vector3d> m_vertices;                       // unit vectors of the background vertices, in Morton order
   std::shared_ptr<const Locator> m_locator;
   // the sites' last Delaunay triangulation, repaired by flips at the next integrate()
-  struct Delaunay_cache {
-    std::mutex mutex;
-    internal::Sphere_flip_triangulation flips;
-  };
+  typedef internal::Flip_cache<internal::Sphere_flip_triangulation> Delaunay_cache;
   std::shared_ptr<Delaunay_cache> m_delaunay = std::make_shared<Delaunay_cache>();
   double m_area = 0, m_total_mass = 0;
   std::size_t m_degenerate = 0;

@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cstddef>
+#include <mutex>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -26,6 +28,25 @@ public:
   {
     tri.clear();
     adj.clear();
+  }
+  // the faces [begin, end) of a CGAL triangulation (vertex info: the site), each neighbour(k) as an
+  // index, -1 where the neighbour is not among them
+  template <typename FaceIterator>
+  void assign(FaceIterator begin, FaceIterator end)
+  {
+    clear();
+    std::unordered_map<const void*, int> index;
+    for(auto f = begin; f != end; ++f) {
+      index.emplace(static_cast<const void*>(&*f), int(tri.size()));
+      tri.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+    }
+    adj.resize(tri.size());
+    std::size_t t = 0;
+    for(auto f = begin; f != end; ++f, ++t)
+      for(int k = 0; k < 3; ++k) {  // CGAL: neighbor(k) faces vertex(k)
+        const auto it = index.find(static_cast<const void*>(&*f->neighbor(k)));
+        adj[t][std::size_t(k)] = it == index.end() ? -1 : it->second;
+      }
   }
   // the corner of triangle u opposite its edge shared with triangle t (-1 if none, or if they share two)
   int corner_facing(int u, int t) const
@@ -124,6 +145,32 @@ private:
     stack.emplace_back(u, 0);
     stack.emplace_back(u, 2);
   }
+};
+
+// What the sphere's and the plane's repaired triangulations share: the triangles, whether they are held
+// (the last take() or update() succeeded), the flips of the last update, and the neighbour lists.
+class Flip_triangulation_base {
+public:
+  bool valid() const { return m_valid; }
+  std::size_t number_of_triangles() const { return m_mesh.tri.size(); }
+  const std::array<int, 3>& triangle(std::size_t t) const { return m_mesh.tri[t]; }
+  std::size_t last_flips() const { return m_last_flips; }
+  // the Delaunay neighbours of every site in CSR form (neighbours of i: nbr[start[i] .. start[i+1]))
+  void neighbours(std::vector<int>& start, std::vector<int>& nbr) const { m_mesh.neighbours(m_sites, start, nbr); }
+
+protected:
+  Flip_adjacency m_mesh;  // counterclockwise
+  std::size_t m_sites = 0, m_last_flips = 0;
+  bool m_valid = false;
+};
+
+// A domain's last Delaunay triangulation of the sites, shared by copies of its traits and repaired at
+// the next integration (one at a time: a concurrent one, failing to lock, triangulates anew)
+template <typename Flips>
+struct Flip_cache {
+  std::mutex mutex;
+  Flips flips;
+  std::size_t repairs = 0;  // integrations that repaired instead of triangulating anew
 };
 
 } // namespace internal

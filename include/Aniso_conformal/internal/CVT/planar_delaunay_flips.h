@@ -13,7 +13,6 @@
 
 #include <cmath>
 #include <cstddef>
-#include <unordered_map>
 #include <vector>
 
 // The Delaunay triangulation of the CVT's sites in the plane, kept from one energy evaluation to the next
@@ -32,13 +31,8 @@
 namespace Aniso_conformal {
 namespace internal {
 
-class Planar_flip_triangulation {
+class Planar_flip_triangulation : public Flip_triangulation_base {
 public:
-  bool valid() const { return m_valid; }
-  std::size_t number_of_triangles() const { return m_mesh.tri.size(); }
-  const std::array<int, 3>& triangle(std::size_t t) const { return m_mesh.tri[t]; }
-  std::size_t last_flips() const { return m_last_flips; }
-
   // takes the triangulation `d` of `ns` sites; false (and not valid) unless every site is a vertex of it
   // and it has dimension 2
   bool take(const Indexed_delaunay_2& d, std::size_t ns)
@@ -48,18 +42,7 @@ public:
     if(d.dt.dimension() != 2 || d.handle.size() != ns) return false;
     for(std::size_t i = 0; i < ns; ++i)
       if(!d.has_vertex(i)) return false;
-    std::unordered_map<const void*, int> index;
-    for(auto f = d.dt.finite_faces_begin(); f != d.dt.finite_faces_end(); ++f) {
-      index.emplace(static_cast<const void*>(&*f), int(m_mesh.tri.size()));
-      m_mesh.tri.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
-    }
-    m_mesh.adj.resize(m_mesh.tri.size());
-    std::size_t t = 0;
-    for(auto f = d.dt.finite_faces_begin(); f != d.dt.finite_faces_end(); ++f, ++t)
-      for(int k = 0; k < 3; ++k) {  // CGAL: neighbor(k) faces vertex(k); an infinite one: the hull
-        const auto it = index.find(static_cast<const void*>(&*f->neighbor(k)));
-        m_mesh.adj[t][std::size_t(k)] = it == index.end() ? -1 : it->second;
-      }
+    m_mesh.assign(d.dt.finite_faces_begin(), d.dt.finite_faces_end());  // an infinite neighbour: the hull
     m_sites = ns;
     return m_valid = true;
   }
@@ -86,10 +69,6 @@ public:
     };
     return m_valid = m_mesh.make_delaunay(is_delaunay, 10 * m_mesh.tri.size() + 100, m_last_flips);
   }
-
-  // the Delaunay neighbours of every site in CSR form (neighbours of i: nbr[start[i] .. start[i+1])), as
-  // delaunay_neighbours() gives them (in another order)
-  void neighbours(std::vector<int>& start, std::vector<int>& nbr) const { m_mesh.neighbours(m_sites, start, nbr); }
 
 private:
   typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -129,10 +108,7 @@ private:
     return a == first && std::abs(turning - 2 * pi) < pi;  // the chain closed after `edges` steps, once around
   }
 
-  Flip_adjacency m_mesh;  // counterclockwise
   std::vector<Point> m_points;
-  std::size_t m_sites = 0, m_last_flips = 0;
-  bool m_valid = false;
 };
 
 } // namespace internal

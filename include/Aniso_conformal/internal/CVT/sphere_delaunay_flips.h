@@ -15,7 +15,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -41,14 +40,8 @@ namespace Aniso_conformal {
 namespace internal {
 
 // The triangulation as index triples with their neighbours, and the flips that repair it.
-class Sphere_flip_triangulation {
+class Sphere_flip_triangulation : public Flip_triangulation_base {
 public:
-  // whether a triangulation is held (the last take() or update() succeeded)
-  bool valid() const { return m_valid; }
-  std::size_t number_of_triangles() const { return m_mesh.tri.size(); }
-  const std::array<int, 3>& triangle(std::size_t t) const { return m_mesh.tri[t]; }
-  std::size_t last_flips() const { return m_last_flips; }
-
   // takes the triangulation `sd` of `ns` sites (build_sphere_delaunay()); false (and not valid) unless it
   // covers the whole sphere with every site a vertex (no ghost faces, dimension 2)
   bool take(const Sphere_delaunay& sd, std::size_t ns)
@@ -58,19 +51,10 @@ public:
     if(sd.dt.dimension() != 2 || sd.dt.number_of_ghost_faces() > 0) return false;
     for(std::size_t i = 0; i < ns; ++i)
       if(!sd.has_vertex(i)) return false;
-    std::unordered_map<const void*, int> index;
-    for(auto f = sd.dt.all_faces_begin(); f != sd.dt.all_faces_end(); ++f) {
-      index.emplace(static_cast<const void*>(&*f), int(m_mesh.tri.size()));
-      m_mesh.tri.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
-    }
-    m_mesh.adj.resize(m_mesh.tri.size());
-    std::size_t t = 0;
-    for(auto f = sd.dt.all_faces_begin(); f != sd.dt.all_faces_end(); ++f, ++t)
-      for(int k = 0; k < 3; ++k) {
-        const auto it = index.find(static_cast<const void*>(&*f->neighbor(k)));  // CGAL: neighbor(k) faces vertex(k)
-        if(it == index.end()) return false;
-        m_mesh.adj[t][std::size_t(k)] = it->second;
-      }
+    m_mesh.assign(sd.dt.all_faces_begin(), sd.dt.all_faces_end());
+    for(const auto& a : m_mesh.adj)
+      for(int t : a)
+        if(t < 0) return false;
     m_sites = ns;
     m_valid = m_mesh.tri.size() == 2 * ns - 4;
     return m_valid;
@@ -99,10 +83,6 @@ public:
     };
     return m_valid = m_mesh.make_delaunay(is_delaunay, 10 * m_mesh.tri.size() + 100, m_last_flips);
   }
-
-  // the Delaunay neighbours of every site in CSR form (neighbours of i: nbr[start[i] .. start[i+1])), as
-  // sphere_delaunay_neighbours() gives them
-  void neighbours(std::vector<int>& start, std::vector<int>& nbr) const { m_mesh.neighbours(m_sites, start, nbr); }
 
 private:
   typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -136,10 +116,7 @@ private:
   {
     return CGAL::orientation(m_points[std::size_t(t[0])], m_points[std::size_t(t[1])], m_points[std::size_t(t[2])], Point(0, 0, 0));
   }
-  Flip_adjacency m_mesh;  // counterclockwise seen from outside
   std::vector<Point> m_points;
-  std::size_t m_sites = 0, m_last_flips = 0;
-  bool m_valid = false;
 };
 
 } // namespace internal

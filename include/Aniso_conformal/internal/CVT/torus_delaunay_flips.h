@@ -4,6 +4,8 @@
 #ifndef ANISO_CONFORMAL_INTERNAL_CVT_TORUS_DELAUNAY_FLIPS_H
 #define ANISO_CONFORMAL_INTERNAL_CVT_TORUS_DELAUNAY_FLIPS_H
 
+#include <Aniso_conformal/internal/CVT/lawson_flips.h>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <Eigen/Core>
