@@ -33,10 +33,11 @@
 // when every triangle is counterclockwise (CGAL's exact orientation on the corners as computed) and their
 // areas sum to the torus' once (a covering of degree one with no folded triangle); otherwise it is
 // rebuilt. Lawson's flips then make it Delaunay (on a flat torus as in the plane: every edge that is not
-// locally Delaunay is flippable, each flip lowers the sum of the squared edge lengths' weighted
-// energy, and the end is the Delaunay triangulation, unique up to cocircular sites, any of whose
-// triangulations serves). Each flip's in-circle test is made in the frame of the triangle on one side
-// (its corners as computed there); the flips are bounded, and a bound reached means a rebuild.
+// locally Delaunay is flippable, as its quadrilateral is convex, each flip lowers the Dirichlet energy of
+// piecewise linear functions (Rippa 1990), and the end is the Delaunay triangulation, unique up to
+// cocircular sites, any of whose triangulations serves). Each flip's in-circle test is made in the frame
+// of the triangle on one side (its corners as computed there); the flips are bounded, and a bound
+// reached means a rebuild.
 
 namespace Aniso_conformal {
 namespace internal {
@@ -246,7 +247,7 @@ private:
     return CGAL::side_of_oriented_circle(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()), K::Point_2(c.x(), c.y()),
                                          K::Point_2(d.x(), d.y())) != CGAL::ON_POSITIVE_SIDE;
   }
-  // sets the link of triangle x that pointed to `old_t` (through its corner `corner`) to (new_t, new_k)
+  // points the link of x (triangle x.t, across the edge opposite its corner x.k) at (new_t, new_k)
   void relink(const Link& x, int new_t, int new_k) { m_adj[std::size_t(x.t)][std::size_t(x.k)] = Link{new_t, new_k}; }
   // (c, a, b) in t and (d, b, a) in u become (c, a, d) in t and (d, b, c) in u, both in t's frame with their
   // first offset zero; their four outer edges go on the stack
@@ -287,10 +288,9 @@ private:
     m_adj[std::size_t(self)][std::size_t(corner)] = x;
     relink(x, self, corner);
   }
-  // an old (triangle, corner) of t or u before the flip, as (triangle, corner) after it: t's old corners
-  // k (c), k + 1 (a) are the new t's 0, 1; u's old m (d) is the new t's 2... expressed through edges: the
-  // old edge opposite t's corner k + 1 is (b, c), now opposite u's corner 0; opposite k + 2, (c, a): t's 2;
-  // opposite u's m + 1, (a, d): t's 0; opposite m + 2, (d, b): u's 2
+  // an outer edge of t or u, given by (triangle, corner opposite it) before the flip, as it is after:
+  // the old edge opposite t's corner k + 1, (b, c), is now opposite u's corner 0; opposite t's k + 2,
+  // (c, a): t's 2; opposite u's m + 1, (a, d): t's 0; opposite u's m + 2, (d, b): u's 2
   static Link remap(const Link& x, int t, int u, int k, int m)
   {
     if(x.t == t) return x.k == (k + 1) % 3 ? Link{u, 0} : Link{t, 2};
