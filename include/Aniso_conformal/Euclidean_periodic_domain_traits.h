@@ -459,11 +459,9 @@ private:
   {
     for(std::size_t t = 0; t < tf.number_of_triangles(); ++t) {
       const auto& T = tf.triangle(t);
-      const Eigen::Vector2d p = tf.position(T.v[0], T.o[0]), q = tf.position(T.v[1], T.o[1]) - p, r = tf.position(T.v[2], T.o[2]) - p;
-      const double d = 2 * (q.x() * r.y() - q.y() * r.x());
-      const Eigen::Vector2d rel((r.y() * q.squaredNorm() - q.y() * r.squaredNorm()) / d, (q.x() * r.squaredNorm() - r.x() * q.squaredNorm()) / d);
-      const Eigen::Vector2d c = p + rel;
-      const double radius = rel.norm() * (1 + 1e-12);
+      const Eigen::Vector2d p = tf.position(T.v[0], T.o[0]);
+      const Eigen::Vector2d c = internal::split_delaunay_detail::circumcentre(p, tf.position(T.v[1], T.o[1]), tf.position(T.v[2], T.o[2]));
+      const double radius = (c - p).norm() * (1 + 1e-12);
       for(int k = 0; k < 3; ++k)
         if(!circle_in_band(c - double(T.o[std::size_t(k)][0]) * m_lattice[0] - double(T.o[std::size_t(k)][1]) * m_lattice[1], radius, m))
           return false;

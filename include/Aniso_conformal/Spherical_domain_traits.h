@@ -263,6 +263,7 @@ public:
     std::unique_lock<std::mutex> lock(m_delaunay->mutex, std::try_to_lock);
     if(lock.owns_lock() && m_delaunay->flips.update(unit)) {
       m_delaunay->flips.neighbours(start, nbr);
+      ++m_delaunay->repairs;
     } else {
       internal::Sphere_delaunay sd;
       internal::build_sphere_delaunay(unit, sd);

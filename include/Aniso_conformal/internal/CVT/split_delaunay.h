@@ -66,12 +66,16 @@ namespace split_delaunay_detail {
 
 // the centre of the circle through the points v[0] < v[1] < v[2], computed from them in that order, so
 // that every triangulation holding the triangle gets the same bits
-inline Eigen::Vector2d circumcentre(const std::vector<Eigen::Vector2d>& pts, const std::array<int, 3>& v)
+inline Eigen::Vector2d circumcentre(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c)
 {
-  const Eigen::Vector2d &p = pts[std::size_t(v[0])], q = pts[std::size_t(v[1])] - p, r = pts[std::size_t(v[2])] - p;
+  const Eigen::Vector2d q = b - a, r = c - a;
   const double d = 2 * (q.x() * r.y() - q.y() * r.x());
   const double q2 = q.squaredNorm(), r2 = r.squaredNorm();
-  return p + Eigen::Vector2d((r.y() * q2 - q.y() * r2) / d, (q.x() * r2 - r.x() * q2) / d);
+  return a + Eigen::Vector2d((r.y() * q2 - q.y() * r2) / d, (q.x() * r2 - r.x() * q2) / d);
+}
+inline Eigen::Vector2d circumcentre(const std::vector<Eigen::Vector2d>& pts, const std::array<int, 3>& v)
+{
+  return circumcentre(pts[std::size_t(v[0])], pts[std::size_t(v[1])], pts[std::size_t(v[2])]);
 }
 
 // The finite triangles of `dt` with a vertex `own(i)`: each is tested once, `trusted(centre, radius)`

@@ -117,29 +117,27 @@ public:
     for(std::size_t i = 0; i < all.size(); ++i)
       if(i == 0 || key(all[i]) != key(all[i - 1])) m_tri.push_back(all[i]);
     if(m_tri.size() != 2 * ns) return clear();
-    // the edges: the one opposite corner k of t runs from corner k + 1 to corner k + 2; its twin back
-    typedef std::tuple<int, int, int, int, int, int> Edge;  // from, to, offset difference, triangle, corner
-    std::vector<Edge> edges;
+    // the edges: the one opposite corner k of t runs from corner k + 1 to corner k + 2; its twin back.
+    // Each directed edge (from, to, offset difference) must be found once, its twin once
+    typedef std::array<int, 4> Edge;
+    std::vector<std::pair<Edge, std::pair<int, int>>> edges;  // with (triangle, corner)
     edges.reserve(3 * m_tri.size());
     for(std::size_t t = 0; t < m_tri.size(); ++t)
       for(int k = 0; k < 3; ++k) {
         const std::size_t i = std::size_t((k + 1) % 3), j = std::size_t((k + 2) % 3);
         const Triangle& T = m_tri[t];
-        edges.emplace_back(T.v[i], T.v[j], T.o[j][0] - T.o[i][0], T.o[j][1] - T.o[i][1], int(t), k);
+        edges.push_back({Edge{{T.v[i], T.v[j], T.o[j][0] - T.o[i][0], T.o[j][1] - T.o[i][1]}}, {int(t), k}});
       }
     std::sort(edges.begin(), edges.end());
+    const auto by_edge = [](const std::pair<Edge, std::pair<int, int>>& x, const Edge& y) { return x.first < y; };
+    const auto edge_by = [](const Edge& x, const std::pair<Edge, std::pair<int, int>>& y) { return x < y.first; };
     m_adj.assign(m_tri.size(), {{Link{-1, -1}, Link{-1, -1}, Link{-1, -1}}});
-    for(const Edge& e : edges) {
-      const Edge twin(std::get<1>(e), std::get<0>(e), -std::get<2>(e), -std::get<3>(e), -1, -1);
-      const auto it = std::lower_bound(edges.begin(), edges.end(), twin);
-      if(it == edges.end() || std::get<0>(*it) != std::get<0>(twin) || std::get<1>(*it) != std::get<1>(twin) ||
-         std::get<2>(*it) != std::get<2>(twin) || std::get<3>(*it) != std::get<3>(twin))
-        return clear();
-      const auto next = it + 1;  // a directed edge twice: not a triangulation of the torus
-      if(next != edges.end() && std::get<0>(*next) == std::get<0>(twin) && std::get<1>(*next) == std::get<1>(twin) &&
-         std::get<2>(*next) == std::get<2>(twin) && std::get<3>(*next) == std::get<3>(twin))
-        return clear();
-      m_adj[std::size_t(std::get<4>(e))][std::size_t(std::get<5>(e))] = Link{std::get<4>(*it), std::get<5>(*it)};
+    for(const auto& e : edges) {
+      const Edge twin{{e.first[1], e.first[0], -e.first[2], -e.first[3]}};
+      const auto first = std::lower_bound(edges.begin(), edges.end(), twin, by_edge);
+      const auto last = std::upper_bound(first, edges.end(), twin, edge_by);
+      if(last - first != 1) return clear();  // no twin, or a directed edge twice: not a triangulation of the torus
+      m_adj[std::size_t(e.second.first)][std::size_t(e.second.second)] = Link{first->second.first, first->second.second};
     }
     m_sites = ns;
     m_valid = true;
