@@ -418,6 +418,28 @@ BOOST_AUTO_TEST_CASE(the_cow_goes_to_cones_when_the_sphere_fails)
   BOOST_TEST(r.hausdorff_distance_relative < 0.03);  // measured 0.0186 (the limb body at 1500: 0.0054)
 }
 
+// CGAL's camel (test/data/cgal) at 500 sites, seed 1: the sphere fails (its legs), and in the cone domain
+// a chart expecting less than one site starts from a band three times the square root of its own area;
+// 8 widenings by 1.6 did not reach the Voronoi cells around it and the remesh was refused ("the Voronoi
+// cells of chart 7 are not complete within a band of width 0.0096 (too few sites for the surface)").
+// The band now widens up to 24 times (build_band()'s bound on its copies stops it on a surface with
+// really too few sites).
+BOOST_AUTO_TEST_CASE(camel_at_500_sites_widens_the_bands_of_its_smallest_charts)
+{
+  const AC::Input_surface camel = AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cgal/camel.off");
+  const std::size_t n = 500;
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = AC::remesh(camel, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).random_seed(1u));
+  BOOST_TEST_MESSAGE("camel -> " << n << ": " << r.domain_choice << "; G_avg " << r.quality.G_avg << " theta_min " << r.quality.theta_min
+                                 << " Hausdorff " << r.hausdorff_distance_relative);
+  BOOST_TEST(r.domain_choice.rfind("cones, because the sphere failed: ", 0) == 0u, r.domain_choice);
+  BOOST_TEST(out.points.size() == n);
+  BOOST_TEST(closed_manifold_genus(n, out.faces) == 0);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.quality.G_avg >= 0.85);      // measured 0.894
+  BOOST_TEST(r.quality.theta_min >= 12.0);  // measured 20.1
+}
+
 // CGAL's femur (genus 2, test/data/cgal): the hyperbolic disk cannot resolve its sites (the metric shrinks
 // one end), so it goes to cones (108, up to 755 degrees). At 2000 sites one cone of 278 degrees lies on a
 // part narrower than the sites' spacing, its link a b c c b: no site could be merged into it and the dual

@@ -482,7 +482,10 @@ private:
   }
 
   // Every chart's sites and copies, with a Delaunay triangulation whose circles that matter lie in the band
-  // (widened up to 8 times by 1.6).
+  // (widened up to 24 times by 1.6; build_band()'s bound on the number of copies stops it sooner on a
+  // surface with too few sites). A chart expecting less than one site starts from a band three times the
+  // square root of its own area, far narrower than the cells around it: 8 widenings (a factor 43) left
+  // CGAL's camel at 500 sites refused ("not complete within a band of width 0.0096"), which 12 remesh.
   std::vector<Chart_points> chart_points() const
   {
     const std::size_t ns = m_state.size();
@@ -506,6 +509,7 @@ private:
         m_band_width[c] = 3 * std::sqrt(chart.area / sites_here);
         build_band(c, m_band_width[c]);
       }
+      const int max_widenings = 24;
       for(int attempt = 0;; ++attempt) {
         cp = Chart_points();
         for(int f : chart.faces)
@@ -523,7 +527,7 @@ private:
           }
         cp.dt.build(cp.points);
         if(internal::chart_is_complete(chart, cp, m_band_width[c])) break;
-        if(attempt == 8)
+        if(attempt == max_widenings)
           throw Convergence_failure("cone domain: the Voronoi cells of chart " + std::to_string(c) + " are not complete within a band of width " +
                                         std::to_string(m_band_width[c]) + " (too few sites for the surface)",
                                     m_band_width[c]);
