@@ -12,6 +12,7 @@
 #include <Aniso_conformal/internal/conformal/layout.h>
 #include <Aniso_conformal/internal/conformal/newton_solver.h>
 #include <Aniso_conformal/internal/conformal/tree_cotree.h>
+#include <Aniso_conformal/internal/printable.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/parameters.h>
 
@@ -78,14 +79,6 @@ struct Hyperbolic_embedding {
 };
 
 namespace internal {
-
-// a length in the %g format (std::to_string writes 4e-14 as 0.000000)
-inline std::string short_number(double x)
-{
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
 
 // Moves the layout by the boost that takes the mass centre of its corners to the apex (1, 0, 0).
 inline void centre_on_apex(std::vector<std::array<Eigen::Vector3d, 3>>& X)

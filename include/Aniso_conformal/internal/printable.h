@@ -5,6 +5,7 @@
 #define ANISO_CONFORMAL_INTERNAL_PRINTABLE_H
 
 #include <cstddef>
+#include <cstdio>
 #include <string>
 
 namespace Aniso_conformal {
@@ -31,6 +32,15 @@ inline std::string printable(const std::string& text, std::size_t max_length = s
   }
   if(n < text.size()) out += "...";
   return out;
+}
+
+// a number in the %.3g format, for messages: std::to_string writes 4e-14 (and a tolerance of 1e-9) as
+// 0.000000
+inline std::string short_number(double x)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
 }
 
 } // namespace internal

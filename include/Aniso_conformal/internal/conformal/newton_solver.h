@@ -11,6 +11,7 @@
 #include <Aniso_conformal/internal/conformal/sparse_cholesky.h>
 #include <Aniso_conformal/internal/intrinsic/flip_to_delaunay.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
+#include <Aniso_conformal/internal/printable.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 
 #include <Eigen/Core>
@@ -114,7 +115,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
     if(pass.budget_hit)
       throw Convergence_failure(who + ": the intrinsic Delaunay flips did not terminate within " + std::to_string(pass.budget) +
                                     " flips at Newton iteration " + std::to_string(it) +
-                                    (std::isfinite(residual) ? " (angle-sum error " + std::to_string(residual) + ")" : std::string()),
+                                    (std::isfinite(residual) ? " (angle-sum error " + short_number(residual) + ")" : std::string()),
                                 residual);
     if(pass.flips > 0) connectivity_changed = true;
     std::fill(angle_sum.begin(), angle_sum.end(), 0.0);
@@ -190,7 +191,7 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
       }
       if(!accepted)
         throw Convergence_failure(who + ": the line search of Newton's method found no decrease of the angle-sum error at iteration " +
-                                      std::to_string(it) + " (angle-sum error " + std::to_string(residual) + ")",
+                                      std::to_string(it) + " (angle-sum error " + short_number(residual) + ")",
                                   residual);
     } else {
       // backtracking on the residual: the energy is convex, so a full step is nearly always taken
@@ -218,8 +219,8 @@ Conformal_solution solve_conformal_metric(Intrinsic_triangulation& itri, const G
   sol.backend = solver.factor().backend();
   sol.fallback_reason = solver.factor().fallback_reason;
   if(!(residual <= bounds.tolerance))
-    throw Convergence_failure(who + ": Newton's method reached angle-sum error " + std::to_string(residual) + " after " +
-                                  std::to_string(it) + " iterations (tolerance " + std::to_string(bounds.tolerance) + ")",
+    throw Convergence_failure(who + ": Newton's method reached angle-sum error " + short_number(residual) + " after " +
+                                  std::to_string(it) + " iterations (tolerance " + short_number(bounds.tolerance) + ")",
                               residual);
   return sol;
 }
