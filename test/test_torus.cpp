@@ -14,6 +14,7 @@
 #include <Aniso_conformal/Curvature_metric.h>
 #include <Aniso_conformal/Euclidean_periodic_domain_traits.h>
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
+#include <Aniso_conformal/IO/write_report.h>
 #include <Aniso_conformal/IO/write_svg.h>
 #include <Aniso_conformal/Tensor_field_metric.h>
 #include <Aniso_conformal/Uniform_metric.h>
@@ -459,6 +460,63 @@ BOOST_AUTO_TEST_CASE(unsmoothed_table2_field_reaches_the_angle_bar_with_the_surf
   BOOST_TEST(r.quality.theta_min > 30.0);
   BOOST_TEST(r.quality.percent_below_30 < 0.0125);
   BOOST_TEST(r.quality.stretch_max > 6.0);  // the anisotropy is realised (8.17 measured at the vertices)
+}
+
+BOOST_AUTO_TEST_CASE(paper_stretch_field_remeshes_with_the_stretch_bounded_where_edges_cannot_follow_it)
+{
+  // issue 17: a field on the Table 2 cyclide whose stretch spans the paper's [2, 29] exactly
+  // (make_dupin_cyclide_stretch_field(): the long axis along the tube, stretch |kappa_v / kappa_u| clamped).
+  // Along the tube the long axis turns within the tangent plane (geodesic curvature up to ~1), and at 2000
+  // vertices the longest elements' straight edges leave it by more than the elements' width: the run in
+  // the field as given folds 8 triangles (Convergence_failure before the stretch bound). remesh_in_domain()
+  // then bounds the stretch where it cannot be followed (Stretch_limit_report) and remeshes. Measured:
+  // 6670 input vertices bounded (bounds 4.83 to 29, median 6.3), G_avg 0.918, theta_min 30.1, %<30 0 in the
+  // bounded metric; in the field as given G_avg 0.902, theta_min 13.6; stretch at the output [2, 9.99].
+  const AC::Input_surface s = AC::make_dupin_cyclide(180, 144);
+  const AC::Tensor_field_metric field = AC::make_dupin_cyclide_stretch_field(180, 144);
+  BOOST_REQUIRE(field.size() == s.number_of_vertices());
+  // the field's own stretch at the vertices spans [2, 29]
+  double lo = 1e300, hi = 0;
+  for(std::size_t v = 0; v < s.number_of_vertices(); ++v) {
+    const AC::internal::Tangent_scales sc = AC::internal::tangent_scales(field.tensors()[v], s.vertex_normals()[v]);
+    lo = std::min(lo, sc.big / sc.small);
+    hi = std::max(hi, sc.big / sc.small);
+  }
+  BOOST_TEST(lo == 2.0, boost::test_tools::tolerance(0.02));
+  BOOST_TEST(hi == 29.0, boost::test_tools::tolerance(0.02));
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out = remesh_torus(s, field, r, AC::parameters::number_of_vertices(std::size_t(2000)));
+  check_torus_output(out, 2000);
+  const AC::Stretch_limit_report& l = r.stretch_limit;
+  BOOST_TEST_MESSAGE("[2, 29] field, 2000 vertices: " << l.vertices_limited << " vertices bounded (from " << l.bound_min
+                     << ", median " << l.bound_median << "); G_avg " << r.quality.G_avg << " theta_min " << r.quality.theta_min
+                     << " %<30 " << r.quality.percent_below_30 << "; in the field as given G_avg " << l.given_G_avg
+                     << " theta_min " << l.given_theta_min << "; stretch at the output [" << r.quality.stretch_min << ", "
+                     << r.quality.stretch_max << "]; discarded " << r.discarded_seconds << " s");
+  BOOST_TEST(l.applied);
+  BOOST_TEST(l.reason.find("inverted") != std::string::npos);
+  BOOST_TEST(l.vertices_limited > 1000u);
+  BOOST_TEST(l.vertices_limited < s.number_of_vertices() / 2);
+  BOOST_TEST(l.stretch_asked_max == 29.0, boost::test_tools::tolerance(0.02));
+  BOOST_TEST(l.bound_min > 2.0);
+  BOOST_TEST(l.bound_min < l.bound_median);
+  BOOST_TEST(r.discarded_seconds > 0.0);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.quality.G_avg >= 0.90);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+  BOOST_TEST(r.quality.stretch_min >= 1.95);  // the lower end of the field is realised
+  BOOST_TEST(r.quality.stretch_max > 7.0);    // and far more than the curvature metric's default smoothing keeps
+  BOOST_TEST(l.given_G_avg > 0.85);
+  BOOST_TEST(l.given_G_avg < r.quality.G_avg);  // the bounded elements are rounder than the field asks
+  const nlohmann::json j = AC::IO::report_json(r);  // the JSON report says it too
+  BOOST_TEST(j.at("stretch_limit").at("vertices_limited").get<std::size_t>() == l.vertices_limited);
+  BOOST_TEST(j.at("stretch_limit").at("given_metric_quality").at("G_avg").get<double>() ==
+             l.given_G_avg, boost::test_tools::tolerance(1e-9));
+  // the bound does not touch a field the output can follow: an isotropic metric fails as it did
+  BOOST_CHECK_THROW(remesh_torus(AC::make_dupin_cyclide(12, 8), AC::Uniform_metric(), r,
+                                 AC::parameters::number_of_vertices(std::size_t(2000)).max_conformal_iterations(1)),
+                    AC::Convergence_failure);
+  BOOST_TEST(!r.stretch_limit.applied);
 }
 
 // The torus (R = 2, r = 1) as a 240 x 80 grid, and its exact curvature metric at stretch 30 (what

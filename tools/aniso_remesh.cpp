@@ -149,6 +149,15 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     if(result.repairs.any()) std::printf("repairs      %s\n", result.repairs.summary().c_str());
     if(!result.domain_choice.empty()) std::printf("domain       %s\n", result.domain_choice.c_str());
     if(!result.reseeded.empty()) std::printf("reseeded     the CVT ran again with the next seed: %s\n", result.reseeded.c_str());
+    if(result.stretch_limit.applied) {
+      const AC::Stretch_limit_report& l = result.stretch_limit;
+      std::printf("stretch cap  the metric's stretch (up to %.3g) was lowered at %zu input vertices to what straight edges can "
+                  "follow where its long axis turns (bounds from %.3g, median %.3g): the run in the metric as given failed (%s); "
+                  "the quality below is in the bounded metric, in the metric as given G_min %.4f  G_avg %.4f  theta_min %.2f  "
+                  "%%<30 %.3f\n",
+                  l.stretch_asked_max, l.vertices_limited, l.bound_min, l.bound_median, l.reason.c_str(), l.given_G_min,
+                  l.given_G_avg, l.given_theta_min, l.given_percent_below_30);
+    }
     std::printf("output       %zu vertices, %zu triangles, %zu on the boundary, %zu boundary corners, %zu inverted (domain %s)\n",
                 q.number_of_vertices, q.number_of_triangles, result.boundary_sites, result.corners, result.inverted_triangles,
                 AC::domain_name(result.domain));

@@ -25,6 +25,31 @@ namespace Aniso_conformal {
 
 /*!
  * \ingroup PkgAnisoConformalMain
+ * the stretch bound of `remesh_in_domain()` and `remesh()` (issue 17; doc/manual.md, "The paper's [2, 29] as a field, and the stretch a mesh can realise"): when the run
+ * in the metric as given leaves folded (inverted) triangles because straight edges cannot follow the
+ * metric's long axis where it turns within the tangent plane (an element of length `L`, width `w` and
+ * stretch `r = L / w` along a line of geodesic curvature `kappa_g` folds once the sagitta
+ * `kappa_g L^2 / 8` nears `w`), it runs again with the stretch at each input vertex lowered to
+ * `sqrt(8 c / (kappa_g w))` (`c` = 1/4, `w` the element's width at the requested number of vertices)
+ * where it asked for more, and reports it here. The output's `Remeshing_result::quality` is then
+ * measured in the bounded metric, the one the output realises; the `given_*` figures measure it in the
+ * metric as given.
+ */
+struct Stretch_limit_report {
+  bool applied = false;              ///< `true` if the output is that of the run with the stretch bounded
+  std::size_t vertices_limited = 0;  ///< input vertices whose stretch was lowered
+  double stretch_asked_max = 0;      ///< the largest stretch asked for at those vertices
+  double bound_min = 0;              ///< the smallest bound there (the stretch realised at most)
+  double bound_median = 0;           ///< the median bound there
+  std::string reason;                ///< why the run in the metric as given failed
+  double given_G_min = 0;            ///< the output's `G_min` in the metric as given
+  double given_G_avg = 0;            ///< the output's `G_avg` in the metric as given
+  double given_theta_min = 0;        ///< the output's smallest angle in the metric as given (degrees)
+  double given_percent_below_30 = 0; ///< the share of its triangles below 30 degrees there (percent)
+};
+
+/*!
+ * \ingroup PkgAnisoConformalMain
  * which of the runs of `remesh()` that follow the input's creases (issue 15) gave the output: up to four
  * runs from the background after stage 2's refinement (doc/manual.md, "Sharp features");
  * `crease_run_name()` spells each value as the JSON report and the tool's summary write it
@@ -137,9 +162,12 @@ struct Remeshing_result {
   /// what the domain measured (flat torus: the lattice; sphere: the angle distortion; hyperbolic disk:
   /// the group's relation error and the tiles reached), written by the report writers as they are
   Domain_diagnostics domain_diagnostics;
+  /// the stretch bound, when the run in the metric as given folded triangles (`Stretch_limit_report`)
+  Stretch_limit_report stretch_limit;
   /// wall time (s) of the runs whose output was thrown away: the runs with crease sites that failed
-  /// (`creases_not_followed`, `crease_run`) and, under the automatic choice, the topology's own domain
-  /// before the cone domain took over (`domain_choice`); `seconds` holds the stages of the run that stood
+  /// (`creases_not_followed`, `crease_run`), under the automatic choice, the topology's own domain
+  /// before the cone domain took over (`domain_choice`), and the run in the metric as given before the
+  /// stretch was bounded (`stretch_limit`); `seconds` holds the stages of the run that stood
   double discarded_seconds = 0;
   /// total wall time (s): the stages of the run that stood plus `discarded_seconds`
   double total_seconds() const

@@ -110,7 +110,10 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *
  * The output is checked before it is returned: a consistently oriented, connected 2-manifold with the
  * input's genus and boundary count, no triangle inverted against the input's normals; every vertex lies
- * on the input (`Remeshing_result::hausdorff_distance` measures how close the output follows it).
+ * on the input (`Remeshing_result::hausdorff_distance` measures how close the output follows it). If
+ * it has folded (inverted) triangles while the metric asks somewhere for more stretch than straight edges
+ * can follow where its long axis turns, the run is made again with the stretch bounded there
+ * (`remesh_in_domain()`, `Stretch_limit_report` in `Remeshing_result::stretch_limit`; issue 17).
  *
  * \tparam AnisotropicMetric a model of `AnisotropicMetric`
  * \param surface the input (never modified)
@@ -161,7 +164,8 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *         surface the number of corners of its creases), `feature_angle` is not in [0, 180], or a
  *         `feature_edges` pair is not an edge of the input or a `feature_vertices` index not a vertex
  * \throws Convergence_failure if an iterative stage does not converge within its bound, or if the
- *         output would have an inverted or degenerate triangle (left after the surface optimisation) or a
+ *         output would have an inverted or degenerate triangle (left after the surface optimisation, and
+ *         after the stretch bound where the metric asks for more than edges can follow) or a
  *         wrong topology (it is never returned)
  * \throws Cancelled if the visitor asked to stop
  */

@@ -93,7 +93,7 @@ inline nlohmann::json features_json(const Remeshing_result& r)
 
 /*!
  * \ingroup PkgAnisoConformalIO
- * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did; `reseeded`, why a first run at a boundary loop failed, when the output is that of the run with the next seed); `input` and `background` (vertices, faces); `output`
+ * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did; `reseeded`, why a first run at a boundary loop failed, when the output is that of the run with the next seed; `stretch_limit`, when the run in the metric as given failed and the output is that of the run with the stretch bounded (`Stretch_limit_report`: `vertices_limited`, `stretch_asked_max`, `bound_min`, `bound_median`, `reason`, and `given_metric_quality`, the output's `G_min`, `G_avg`, `theta_min`, `percent_below_30` in the metric as given)); `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
  * histogram; `metric_edge_length`: the mean edge length in the metric and the standard deviation, min and
@@ -128,6 +128,19 @@ inline nlohmann::json report_json(const Remeshing_result& r)
   j["domain"] = domain_name(r.domain);
   if(!r.domain_choice.empty()) j["domain_choice"] = r.domain_choice;  // why the automatic choice left the topology's own domain
   if(!r.reseeded.empty()) j["reseeded"] = r.reseeded;  // why the first run failed at a boundary loop (the output: seed + 1)
+  if(r.stretch_limit.applied) {  // the run in the metric as given folded triangles: the stretch bounded (Stretch_limit_report)
+    const Stretch_limit_report& l = r.stretch_limit;
+    j["stretch_limit"] = {{"vertices_limited", l.vertices_limited},
+                          {"stretch_asked_max", report_number(l.stretch_asked_max)},
+                          {"bound_min", report_number(l.bound_min)},
+                          {"bound_median", report_number(l.bound_median)},
+                          {"reason", l.reason},
+                          {"given_metric_quality",
+                           {{"G_min", report_number(l.given_G_min)},
+                            {"G_avg", report_number(l.given_G_avg)},
+                            {"theta_min", report_number(l.given_theta_min)},
+                            {"percent_below_30", report_number(l.given_percent_below_30)}}}};
+  }
   j["input"] = {{"vertices", r.input_vertices}, {"faces", r.input_faces}};
   j["background"] = {{"vertices", r.background_vertices}, {"faces", r.background_faces}};
   j["output"] = {{"vertices", q.number_of_vertices},
