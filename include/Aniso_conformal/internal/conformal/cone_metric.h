@@ -9,6 +9,7 @@
 #include <Aniso_conformal/internal/conformal/euclidean_geometry.h>
 #include <Aniso_conformal/internal/conformal/layout.h>
 #include <Aniso_conformal/internal/conformal/newton_solver.h>
+#include <Aniso_conformal/internal/printable.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 
 #include <Eigen/Core>
@@ -521,9 +522,9 @@ Cone_metric place_cones(Intrinsic_triangulation& itri, const Cone_placement_opti
     if(v < 0 && stop.empty()) stop = "no candidate vertex left";
     if(!stop.empty() && range_of(u) <= options.acceptable_log_range) break;
     if(!stop.empty())
-      throw Convergence_failure(who + ": the range of the log scale factor is still " + std::to_string(range_of(u)) +
-                                    " (area distortion " + std::to_string(std::exp(2 * range_of(u))) + ") above the budget " +
-                                    std::to_string(options.max_log_range) + " after " + std::to_string(m.cones.size()) +
+      throw Convergence_failure(who + ": the range of the log scale factor is still " + short_number(range_of(u)) +
+                                    " (area distortion " + short_number(std::exp(2 * range_of(u))) + ") above the budget " +
+                                    short_number(options.max_log_range) + " after " + std::to_string(m.cones.size()) +
                                     " cones: " + stop,
                                 range_of(u));
     taken[std::size_t(v)] = 1;
