@@ -7,7 +7,10 @@
 // next to the paper's Table 2 and checks the bar; writes <folder>/fig11_mesh.off,
 // fig11_mesh.svg (the surface coloured by the quality G of each triangle in the metric),
 // fig11_histogram.svg (the angles in the metric) and fig11_cvt.svg (the weighted CVT on the flat
-// torus: the fundamental cell with the sites and their Voronoi cells, the paper's Fig. 11 (a)).
+// torus: the fundamental cell with the sites and their Voronoi cells, the paper's Fig. 11 (a)). Then the
+// same cyclide in a field whose stretch spans the paper's [2, 29] exactly (make_dupin_cyclide_stretch_field()),
+// with the stretch bound remesh_in_domain() applies where straight edges cannot follow it
+// (Stretch_limit_report); writes <folder>/fig11_paper_stretch_mesh.off.
 // Usage: fig11_cyclide [output_folder [number_of_vertices]]
 
 #include "figure_common.h"
@@ -78,6 +81,25 @@ int main(int argc, char** argv)
                                    caption + ": weighted CVT on the flat torus, colour = log2(cell mass / mean)");
     std::printf("wrote %s_mesh.off, %s_mesh.svg, %s_histogram.svg, %s_cvt.svg\n", base.c_str(), base.c_str(), base.c_str(),
                 base.c_str());
+
+    // The paper's stated stretch, [2, 29], as a field that spans it exactly (make_dupin_cyclide_stretch_field():
+    // the long axis along the tube). At this size straight edges cannot follow the long axis where it turns
+    // along the tube: remesh_in_domain() bounds the stretch there and says so (Stretch_limit_report).
+    const AC::Tensor_field_metric paper_field = AC::make_dupin_cyclide_stretch_field(180, 144, 2, 29);
+    AC::Remeshing_result rp;
+    const AC::Remeshed_surface outp = AC::remesh_in_domain<AC::Flat_torus_domain>(cyclide, paper_field, rp, np);
+    const AC::Quality_report& qp = rp.quality;
+    std::printf("\nthe field of stretch [2, 29]: %zu vertices, stretch at the output vertices [%.2f, %.2f] (median %.2f, 95%% %.2f)\n",
+                qp.number_of_vertices, qp.stretch_min, qp.stretch_max, qp.stretch_median, qp.stretch_p95);
+    if(rp.stretch_limit.applied)
+      std::printf("stretch bounded at %zu input vertices (bounds from %.3g, median %.3g) where straight edges cannot follow the "
+                  "long axis; in the field as given: G_min %.4f  G_avg %.4f  theta_min %.2f  %%<30 %.3f\n",
+                  rp.stretch_limit.vertices_limited, rp.stretch_limit.bound_min, rp.stretch_limit.bound_median,
+                  rp.stretch_limit.given_G_min, rp.stretch_limit.given_G_avg, rp.stretch_limit.given_theta_min,
+                  rp.stretch_limit.given_percent_below_30);
+    figure::print_paper_comparison(qp, figure::Paper_quality{0.3771, 0.9068, 22.57, 52.48, 0.0187});
+    AC::IO::write_polygon_soup(base + "_paper_stretch_mesh.off", outp.points, outp.faces);
+    std::printf("wrote %s_paper_stretch_mesh.off\n", base.c_str());
   } catch(const AC::Error& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
