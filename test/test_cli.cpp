@@ -296,9 +296,12 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_square_and_writes_its_outputs)
   // nothing was repaired: no summary line, no report object
   BOOST_TEST(r.out.find("repairs") == std::string::npos);
   BOOST_TEST(!j.contains("repairs"));
-  // no inverted triangle and none below 30 degrees: the surface optimisation (by default a repair) did not run
-  BOOST_TEST(r.out.find("optimised") == std::string::npos);
-  BOOST_TEST(!j.contains("surface_optimization"));
+  // a planar input: the default surface optimisation runs as `always` (since 2026-12-06; before, on this
+  // output without an inverted triangle or one below 30 degrees, it did not run), sides sliding
+  BOOST_TEST(r.out.find("optimised    on the surface: ") != std::string::npos);
+  BOOST_TEST(j.at("surface_optimization").at("ran") == true);
+  BOOST_TEST(j.at("surface_optimization").at("sliding_vertices").get<std::size_t>() > 0u);
+  BOOST_TEST(j.at("surface_optimization").at("G_avg_after").get<double>() >= j.at("surface_optimization").at("G_avg_before").get<double>());
 }
 
 BOOST_AUTO_TEST_CASE(tool_optimises_on_the_surface_when_asked)

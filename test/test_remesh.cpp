@@ -526,8 +526,8 @@ BOOST_AUTO_TEST_CASE(default_surface_optimization_lifts_thin_triangles)
 {
   // The dual of the L-shaped plate under its swirling field, 150 vertices, of a CVT stopped after 5
   // iterations has triangles below 30 degrees (24.2 measured) and none inverted: the default REPAIR runs
-  // the surface optimisation on it, whose max-min angle pass lifts them (30.9 measured) without lowering
-  // G_min or G_avg. (After 100 iterations the dual alone reaches 37.4 degrees since the initial sites
+  // the surface optimisation on it (on a planar input as ALWAYS, since 2026-12-06), whose max-min angle
+  // pass lifts them (30.9 measured with REPAIR's first phase alone) without lowering G_min or G_avg. (After 100 iterations the dual alone reaches 37.4 degrees since the initial sites
   // follow the optimal density of sites; with sites drawn by rho it had 23.3.)
   const std::string cases = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/";
   const AC::Input_surface s = AC::IO::read_triangle_mesh(cases + "lshape8.off");
@@ -549,7 +549,7 @@ BOOST_AUTO_TEST_CASE(default_surface_optimization_lifts_thin_triangles)
   BOOST_TEST(r.quality.G_avg >= off.quality.G_avg - 1e-9);
   BOOST_TEST(r.quality.percent_below_30 <= off.quality.percent_below_30);
   BOOST_TEST(test::count_mesh(out.points, out.faces).euler == 1);
-  // the first phase's figures, as reported, are those of the output's quality
+  // the stage's figures after it, as reported, are those of the output's quality
   BOOST_TEST(std::abs(r.surface_optimization.theta_min_after - r.quality.theta_min) < 1e-9);
 }
 

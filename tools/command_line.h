@@ -309,7 +309,7 @@ inline void declare_options(CLI::App& app, Options& o)
   app.add_option("--surface-optimization", o.surface_optimization,
                  "final flips and vertex moves of the output on the input, in the metric: off | repair (only when the "
                  "dual mesh has inverted triangles, to repair them, a triangle with an angle below 30 degrees, or follows creases; "
-                 "the default; always in the cone domain) | always")
+                 "the default; always in the cone domain and on a planar input: an image, the square) | always")
     ->type_name("WHEN")
     ->check(CLI::IsMember({"off", "repair", "always"}))
     ->group(re);

@@ -22,7 +22,6 @@
 #include <Aniso_conformal/internal/remesh/hole_patches.h>
 #include <Aniso_conformal/internal/remesh/loop_sites.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
-#include <Aniso_conformal/internal/printable.h>
 #include <Aniso_conformal/internal/stretch_limit.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
 #include <Aniso_conformal/measure_features.h>
@@ -260,38 +259,6 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   return dual;
 }
 
-// The corners the plane keeps with its creases (corners_to_fix() with output edge length `h`), those on
-// the boundary marked as corners of the boundary (its 1D CVT then has a site exactly there; the embedding
-// keeps their turning angle): not a boundary vertex within half of `h` (in the metric) of a corner of the
-// boundary already, nor an interior one within half of `h` of the boundary, whose fixed site would make a
-// sliver with the boundary's sites (CGAL's cylinder_locally_refined at 2000 vertices: theta_min 1.3
-// degrees with them, 36.9 without creases followed).
-inline std::vector<std::size_t> plane_corners_to_fix(const Feature_graph& g, Intrinsic_triangulation& itri, double h)
-{
-  std::vector<int> boundary_corners;
-  for(int v = 0; v < int(itri.number_of_vertices()); ++v)
-    if(itri.is_corner(v)) boundary_corners.push_back(v);
-  std::vector<std::size_t> kept;
-  const Boundary_distance to_boundary(itri);
-  for(std::size_t v : corners_to_fix(g, itri, h)) {
-    const int w = int(v);
-    if(!itri.is_boundary_vertex(w)) {
-      if(to_boundary(w) >= 0.5 * h) kept.push_back(v);
-      continue;
-    }
-    bool apart = true;
-    for(int c : boundary_corners)
-      if(c != w && closer_than_half_an_edge(itri, w, c, h)) apart = false;
-    if(!apart) continue;
-    kept.push_back(v);
-    if(!itri.is_corner(w)) {
-      itri.set_corner(w, true);
-      boundary_corners.push_back(w);
-    }
-  }
-  return kept;
-}
-
 // In the plane with the creases followed (issue 15, item 2), the same steps as closed_domain_dual() around
 // the boundary's own sites: the `corners` (plane_corners_to_fix()) on the boundary are corners of the boundary
 // (marked before the embedding, so its 1D CVT has a site exactly there and a crease ending there ends at
@@ -436,11 +403,11 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
     }
   }();
 
-  // the optimisation on the surface, in the metric (always, or to repair inverted triangles)
-  // (always, by default, in a domain that asks for it: the cone domain)
-  const Surface_optimization optimization = Domain::optimizes_on_the_surface_by_default && options.surface_optimization == Surface_optimization::REPAIR
-                                                ? Surface_optimization::ALWAYS
-                                                : options.surface_optimization;
+  // the optimisation on the surface, in the metric; REPAIR as ALWAYS in the cone domain and on a planar
+  // input, where flips cannot move the output off the input (doc/manual.md, the pipeline's stage 5)
+  const bool always = Domain::optimizes_on_the_surface_by_default || surface.is_planar();
+  const Surface_optimization optimization =
+      always && options.surface_optimization == Surface_optimization::REPAIR ? Surface_optimization::ALWAYS : options.surface_optimization;
   optimize_output(surface, metric, out, optimization, vis, result, options.number_of_threads);
 
   // 6. quality in the metric, orientation against the input, topology and distance to the input
@@ -544,64 +511,6 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   return stood(std::move(*out), Crease_run::FEATURES_DROPPED);
 }
 
-// `run(metric)`, the pipeline; if it fails with Convergence_failure for folded (inverted) output triangles
-// (`result.inverted_triangles`, set by the check before it throws) while `metric` asks somewhere for more
-// stretch than straight-edged triangles of
-// `options.number_of_vertices` vertices can follow (stretch_bounds(), Stretch_limit_report), `run` again
-// in the metric with its stretch bounded there; the output of that run, with `result.stretch_limit`
-// saying what was bounded and how the output measures in `metric`, or Convergence_failure with both reasons
-template <typename AnisotropicMetric, typename Run>
-Remeshed_surface run_with_stretch_bound(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
-                                        const Remeshing_options& options, const Run& run)
-{
-  const auto start = std::chrono::steady_clock::now();
-  try {
-    return run(metric);
-  } catch(const Convergence_failure& e) {
-    // only an output with folded triangles: a stage that did not converge is not the stretch's doing
-    // (CGAL's cheese with the curvature metric: its hyperbolic Newton solve fails either way, 17 s -> 91 s
-    // when it was run again)
-    if(result.inverted_triangles == 0) throw;
-    std::vector<double> asked;
-    std::vector<double> bounds = stretch_bounds(surface, metric, options.number_of_vertices, asked);
-    Stretch_limit_report limit;
-    std::vector<double> limited;
-    for(std::size_t v = 0; v < bounds.size(); ++v)
-      if(asked[v] > bounds[v] * (1 + 1e-9)) {
-        limit.stretch_asked_max = std::max(limit.stretch_asked_max, asked[v]);
-        limited.push_back(bounds[v]);
-      }
-    if(limited.empty()) throw;  // the metric asks for no more than the output can realise: the failure stands
-    std::sort(limited.begin(), limited.end());
-    limit.applied = true;
-    limit.vertices_limited = limited.size();
-    limit.bound_min = limited.front();
-    limit.bound_median = limited[limited.size() / 2];
-    limit.reason = e.what();
-    const double failed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const Stretch_limited_metric bounded(
-        surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, std::move(bounds));
-    result = Remeshing_result();
-    Remeshed_surface out;
-    try {
-      out = run(bounded);
-    } catch(const Convergence_failure& e2) {
-      throw Convergence_failure(std::string(e.what()) + "; run again with the stretch bounded to what straight edges can follow (at " +
-                                    std::to_string(limit.vertices_limited) + " input vertices, to at least " +
-                                    short_number(limit.bound_min) + "), it failed too: " + e2.what(),
-                                e.residual());
-    }
-    const Quality_report given = compute_mesh_quality(out.points, out.faces, metric_square_roots_at(metric, out), options.number_of_threads);
-    limit.given_G_min = given.G_min;
-    limit.given_G_avg = given.G_avg;
-    limit.given_theta_min = given.theta_min;
-    limit.given_percent_below_30 = given.percent_below_30;
-    result.stretch_limit = limit;
-    result.discarded_seconds += failed_seconds;
-    return out;
-  }
-}
-
 } // namespace internal
 
 /*!
@@ -611,12 +520,9 @@ Remeshed_surface run_with_stretch_bound(const Input_surface& surface, const Anis
  * instead of the one the topology selects: the six stages of Zhong et al.\ 2014 (metric, edge lengths,
  * conformal embedding, weighted CVT with density `cf^2`, Delaunay dual mapped back, quality in the
  * metric), with `Domain` supplying stage 3, the domain traits of stages 4 and 5 and its diagnostics.
- * A run whose output has folded (inverted) triangles, in a metric that asks somewhere for more stretch
- * than straight edges of `number_of_vertices` vertices can follow where its long axis turns within the
- * tangent plane, is made again with the stretch bounded there to `sqrt(8 c / (kappa_g w))` (`c` = 1/4,
- * `kappa_g` the long axis' geodesic curvature, `w` the elements' width; doc/manual.md, "the stretch a
- * mesh can realise"); `Remeshing_result::stretch_limit` (`Stretch_limit_report`) then says what was
- * bounded, and `quality` is measured in the bounded metric.
+ * A run whose output has folded triangles, in a metric asking for more stretch than straight edges can
+ * follow where its long axis turns, is made again with the stretch bounded there (`Stretch_limit_report`
+ * in `Remeshing_result::stretch_limit`, which says what was bounded; `quality` is then in that metric).
  * `remesh()` is this function behind one switch on the topology; call it directly to compile only the
  * domain you need (each domain brings its own CGAL triangulations, which dominate the build time).
  *
@@ -641,9 +547,8 @@ Remeshed_surface remesh_in_domain(const Input_surface& surface, const Anisotropi
   typename internal::Visitor_reference<NamedParameters>::type visitor = internal::get_visitor(np);
   internal::Visitor_handle handle(visitor);
   const internal::Remeshing_options options = internal::Remeshing_options::from(np);
-  return internal::run_with_stretch_bound(surface, metric, result, options, [&](const auto& m) {
-    return internal::run_pipeline<Domain>(surface, m, result, options, handle);
-  });
+  return internal::run_with_stretch_bound(surface, metric, result, options,
+                                          [&](const auto& m) { return internal::run_pipeline<Domain>(surface, m, result, options, handle); });
 }
 
 /*!

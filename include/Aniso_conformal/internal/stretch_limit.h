@@ -4,16 +4,24 @@
 #ifndef ANISO_CONFORMAL_INTERNAL_STRETCH_LIMIT_H
 #define ANISO_CONFORMAL_INTERNAL_STRETCH_LIMIT_H
 
+#include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Remeshing_result.h>
 #include <Aniso_conformal/Surface_point.h>
+#include <Aniso_conformal/internal/printable.h>
+#include <Aniso_conformal/internal/remesh/canonical_parameters.h>
+#include <Aniso_conformal/internal/remesh/pipeline_steps.h>
+#include <Aniso_conformal/mesh_quality.h>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 // The stretch a mesh of straight-edged triangles can realise (issue 17, "a metric whose stretch cannot be
@@ -164,6 +172,64 @@ private:
   std::function<Tensor(const Surface_point&)> m_given;
   std::vector<double> m_bounds;
 };
+
+// `run(metric)`, the pipeline; if it fails with Convergence_failure for folded (inverted) output triangles
+// (`result.inverted_triangles`, set by the check before it throws) while `metric` asks somewhere for more
+// stretch than straight-edged triangles of
+// `options.number_of_vertices` vertices can follow (stretch_bounds(), Stretch_limit_report), `run` again
+// in the metric with its stretch bounded there; the output of that run, with `result.stretch_limit`
+// saying what was bounded and how the output measures in `metric`, or Convergence_failure with both reasons
+template <typename AnisotropicMetric, typename Run>
+Remeshed_surface run_with_stretch_bound(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                                        const Remeshing_options& options, const Run& run)
+{
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    return run(metric);
+  } catch(const Convergence_failure& e) {
+    // only an output with folded triangles: a stage that did not converge is not the stretch's doing
+    // (CGAL's cheese with the curvature metric: its hyperbolic Newton solve fails either way, 17 s -> 91 s
+    // when it was run again)
+    if(result.inverted_triangles == 0) throw;
+    std::vector<double> asked;
+    std::vector<double> bounds = stretch_bounds(surface, metric, options.number_of_vertices, asked);
+    Stretch_limit_report limit;
+    std::vector<double> limited;
+    for(std::size_t v = 0; v < bounds.size(); ++v)
+      if(asked[v] > bounds[v] * (1 + 1e-9)) {
+        limit.stretch_asked_max = std::max(limit.stretch_asked_max, asked[v]);
+        limited.push_back(bounds[v]);
+      }
+    if(limited.empty()) throw;  // the metric asks for no more than the output can realise: the failure stands
+    std::sort(limited.begin(), limited.end());
+    limit.applied = true;
+    limit.vertices_limited = limited.size();
+    limit.bound_min = limited.front();
+    limit.bound_median = limited[limited.size() / 2];
+    limit.reason = e.what();
+    const double failed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const Stretch_limited_metric bounded(
+        surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, std::move(bounds));
+    result = Remeshing_result();
+    Remeshed_surface out;
+    try {
+      out = run(bounded);
+    } catch(const Convergence_failure& e2) {
+      throw Convergence_failure(std::string(e.what()) + "; run again with the stretch bounded to what straight edges can follow (at " +
+                                    std::to_string(limit.vertices_limited) + " input vertices, to at least " +
+                                    short_number(limit.bound_min) + "), it failed too: " + e2.what(),
+                                e.residual());
+    }
+    const Quality_report given = compute_mesh_quality(out.points, out.faces, metric_square_roots_at(metric, out), options.number_of_threads);
+    limit.given_G_min = given.G_min;
+    limit.given_G_avg = given.G_avg;
+    limit.given_theta_min = given.theta_min;
+    limit.given_percent_below_30 = given.percent_below_30;
+    result.stretch_limit = limit;
+    result.discarded_seconds += failed_seconds;
+    return out;
+  }
+}
 
 } // namespace internal
 } // namespace Aniso_conformal
