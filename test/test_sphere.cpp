@@ -428,6 +428,27 @@ BOOST_AUTO_TEST_CASE(spherical_embedding_refuses_what_it_cannot_do)
   BOOST_TEST(what.find("(tolerance 1e-15)") != std::string::npos, what);
   BOOST_TEST(what.find("angle-sum error 0.000000") == std::string::npos, what);
   BOOST_TEST(t.number_of_vertices() == nv);
+  // a tolerance below what rounding leaves: the error stalls at its floor, and the solve stops after 8
+  // iterations that do not halve it instead of running to the bound of 100 (CGAL's blade through the
+  // sphere: 2.35e-7 for 95 iterations, twice, 38 s)
+  AC::Intrinsic_triangulation t2 = background(s, AC::Curvature_metric(s, co));
+  std::string stalled;
+  double floor_residual = -1;
+  try {
+    AC::spherical_embedding(t2, AC::parameters::max_conformal_iterations(100u).conformal_tolerance(1e-300));
+  } catch(const AC::Convergence_failure& e) {
+    stalled = e.what();
+    floor_residual = e.residual();
+  }
+  BOOST_TEST_MESSAGE("rounding floor: " << stalled);
+  BOOST_TEST(stalled.find("stalled at angle-sum error") != std::string::npos, stalled);
+  BOOST_TEST(stalled.find("the last 8 without halving it") != std::string::npos, stalled);
+  BOOST_TEST(floor_residual > 0);
+  BOOST_TEST(floor_residual < 1e-5);
+  const std::size_t at = stalled.find(" iterations");
+  const std::size_t from = stalled.rfind(' ', at - 1) + 1;
+  BOOST_REQUIRE(at != std::string::npos);
+  BOOST_TEST(std::stoul(stalled.substr(from, at - from)) < 40u, stalled);
 }
 
 BOOST_AUTO_TEST_CASE(fig10_ellipsoid_meets_the_quality_bar)
