@@ -39,7 +39,7 @@ struct Stretch_limit_report {
   bool applied = false;              ///< `true` if the output is that of the run with the stretch bounded
   std::size_t vertices_limited = 0;  ///< input vertices whose stretch was lowered
   double stretch_asked_max = 0;      ///< the largest stretch asked for at those vertices
-  double bound_min = 0;              ///< the smallest bound there (the stretch realised at most)
+  double bound_min = 0;              ///< the smallest bound there (where the output's stretch is bounded most)
   double bound_median = 0;           ///< the median bound there
   std::string reason;                ///< why the run in the metric as given failed
   double given_G_min = 0;            ///< the output's `G_min` in the metric as given

@@ -34,8 +34,10 @@
 // kappa_g L^2 / 8 <= c w with L = r w bounds the stretch by r <= sqrt(8 c / (kappa_g w)); the width w is
 // the short axis of an element at the requested number of vertices, so the bound loosens as the output
 // grows (w ~ 1 / sqrt(N)). c = 1/4 keeps the sagitta at a quarter of the width: on the Table 2 cyclide with
-// a field of stretch [2, 29] at 8000 vertices, c = 1/4 gives G_avg 0.948 and theta_min 32.0, c = 1/2
-// 0.943 and 26.4, c = 1 0.943 and 18.6 (each output valid; the field unlimited: 3 folded triangles).
+// a field of stretch [2, 29] at 8000 vertices (make_dupin_cyclide_stretch_field()), a prototype of the
+// bound (analytic curvatures, Surface_optimization::ALWAYS) gave with c = 1/4 G_avg 0.948 and theta_min
+// 32.0, c = 1/2 0.943 and 26.4, c = 1 0.943 and 18.6, each output valid (the field unbounded: 3 folded
+// triangles); this code with the defaults: 0.932 and 30.0 (doc/manual.md, "the stretch a mesh can realise").
 
 namespace Aniso_conformal {
 namespace internal {
