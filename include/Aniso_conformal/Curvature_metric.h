@@ -450,23 +450,9 @@ private:
       const double a = (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).norm() / 6;
       for(int k = 0; k < 3; ++k) area[t[k]] += a;
     }
-    // the neighbours of each vertex, sorted: the heads of its directed edges (sorted, one each on a
-    // manifold) and the tails of the boundary edges into it (no edge back), in linear time from `out`
-    std::vector<std::uint32_t> start(n + 1, 0), adj;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary;  // (tail, head) of the edges with no twin
-    for(std::size_t v = 0; v < n; ++v) {
-      start[v + 1] = out.start[v + 1] - out.start[v];
-      for(std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i)
-        if(out.find(out.head[i], v) == Directed_edges::none) boundary.emplace_back(std::uint32_t(v), out.head[i]);
-    }
-    for(const auto& b : boundary) ++start[std::size_t(b.second) + 1];
-    for(std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-    adj.resize(start[n]);
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for(std::size_t v = 0; v < n; ++v)
-      for(std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i) adj[fill[v]++] = out.head[i];
-    for(const auto& b : boundary) adj[fill[b.second]++] = b.first;
-    for(std::size_t v = 0; v < n; ++v) std::sort(adj.begin() + std::ptrdiff_t(start[v]), adj.begin() + std::ptrdiff_t(start[v + 1]));
+    // the neighbours of each vertex, sorted (CSR), in linear time from `out`
+    std::vector<std::uint32_t> start, adj;
+    internal::vertex_neighbours(out, n, start, adj);
     double metric_area = 0;
     for(std::size_t v = 0; v < n; ++v) {
       Eigen::Vector2d l;

@@ -59,6 +59,29 @@ struct Directed_edges {
   }
 };
 
+// The neighbours of each of the `n` vertices of the triangles behind `out`, sorted, in CSR form (the
+// neighbours of v are adj[start[v]] ... adj[start[v + 1] - 1]): the heads of its directed edges (sorted,
+// one each on a manifold) and the tails of the boundary edges into it (no edge back), in linear time
+template <typename Index>
+void vertex_neighbours(const Directed_edges<Index>& out, std::size_t n, std::vector<Index>& start, std::vector<Index>& adj)
+{
+  start.assign(n + 1, 0);
+  std::vector<std::pair<Index, Index>> boundary;  // (tail, head) of the edges with no twin
+  for(std::size_t v = 0; v < n; ++v) {
+    start[v + 1] = out.start[v + 1] - out.start[v];
+    for(Index i = out.start[v]; i < out.start[v + 1]; ++i)
+      if(out.find(out.head[i], v) == Directed_edges<Index>::none) boundary.emplace_back(Index(v), out.head[i]);
+  }
+  for(const auto& b : boundary) ++start[std::size_t(b.second) + 1];
+  for(std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  adj.resize(start[n]);
+  std::vector<Index> fill(start.begin(), start.end() - 1);
+  for(std::size_t v = 0; v < n; ++v)
+    for(Index i = out.start[v]; i < out.start[v + 1]; ++i) adj[fill[v]++] = out.head[i];
+  for(const auto& b : boundary) adj[fill[b.second]++] = b.first;
+  for(std::size_t v = 0; v < n; ++v) std::sort(adj.begin() + std::ptrdiff_t(start[v]), adj.begin() + std::ptrdiff_t(start[v + 1]));
+}
+
 } // namespace internal
 } // namespace Aniso_conformal
 

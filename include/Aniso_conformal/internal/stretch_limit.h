@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Remeshing_result.h>
 #include <Aniso_conformal/Surface_point.h>
+#include <Aniso_conformal/internal/directed_edges.h>
 #include <Aniso_conformal/internal/printable.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
@@ -98,25 +99,21 @@ std::vector<double> stretch_bounds(const Input_surface& surface, const Anisotrop
     sc[v] = tangent_scales(Eigen::Matrix3d(metric.tensor(Surface_point::at_vertex(v, P[v]))), nrm);
     stretch[v] = sc[v].small > 0 ? sc[v].big / sc[v].small : 1.0;
   }
-  std::vector<std::vector<std::size_t>> ring(nv);
   std::vector<double> area(nv, 0.0);
   for(const auto& f : surface.faces()) {
     const double a = 0.5 * (P[f[1]] - P[f[0]]).cross(P[f[2]] - P[f[0]]).norm();
-    for(int k = 0; k < 3; ++k) {
-      area[f[k]] += a / 3;
-      ring[f[k]].push_back(f[(k + 1) % 3]);
-      ring[f[k]].push_back(f[(k + 2) % 3]);
-    }
+    for(int k = 0; k < 3; ++k) area[f[k]] += a / 3;
   }
+  std::vector<std::size_t> start, adj;  // the one-rings (directed_edges.h)
+  vertex_neighbours(Directed_edges<std::size_t>(nv, surface.faces(), surface.number_of_faces()), nv, start, adj);
   std::vector<double> kappa_g(nv, 0.0);
   for(std::size_t v = 0; v < nv; ++v) {
-    std::sort(ring[v].begin(), ring[v].end());
-    ring[v].erase(std::unique(ring[v].begin(), ring[v].end()), ring[v].end());
     const Eigen::Vector3d nrm = surface.is_planar() ? Eigen::Vector3d::UnitZ() : N[v];
     const Eigen::Vector3d d = sc[v].long_axis, across = nrm.cross(d);
     Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
     Eigen::Vector2d b = Eigen::Vector2d::Zero();
-    for(std::size_t w : ring[v]) {
+    for(std::size_t i = start[v]; i < start[v + 1]; ++i) {
+      const std::size_t w = adj[i];
       Eigen::Vector3d dw = sc[w].long_axis;
       if(dw.dot(d) < 0) dw = -dw;  // a line field: no orientation
       const Eigen::Vector3d e = P[w] - P[v];
