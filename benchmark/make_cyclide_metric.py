@@ -23,10 +23,13 @@ continuous one that does span [2, 29] on bands a user would see:
 The frame is the same everywhere (the long axis of the ellipses always along the tube), so the field is
 continuous where the two curvatures are equal, which the principal-direction field of a curvature
 metric with a lower bound above 1 would not be. The curvatures come from central differences of the
-exact parameterisation (step 1e-4: errors near 1e-8). Python 3 standard library only.
+exact parameterisation (step 1e-4: errors near 1e-8). Python 3 standard library only (and
+make_torus_metric.py's writer, beside it).
 """
 import argparse
 import math
+
+from make_torus_metric import write_off_and_metric  # the same directory
 
 A, B, MU = 1.0, 0.95, 0.5
 C = math.sqrt(A * A - B * B)
@@ -107,16 +110,7 @@ def main():
             D_ = i * a.nv + (j + 1) % a.nv
             faces.append((A_, B_, C_))
             faces.append((A_, C_, D_))
-    with open(a.off, "w") as f:
-        f.write("OFF\n%d %d 0\n" % (len(pts), len(faces)))
-        for x in pts:
-            f.write("%.17g %.17g %.17g\n" % x)
-        for t in faces:
-            f.write("3 %d %d %d\n" % t)
-    with open(a.metric, "w") as f:
-        f.write("%d\n" % len(tensors))
-        for t in tensors:
-            f.write(" ".join("%.17g" % x for x in t) + "\n")
+    write_off_and_metric(a.off, a.metric, pts, faces, tensors)
     s = sorted(ratios)
     print("stretch of the field at the %d vertices: min %.2f, median %.2f, 95%% %.2f, max %.2f; %.1f%% at the upper bound"
           % (len(s), s[0], s[len(s) // 2], s[int(0.95 * (len(s) - 1))], s[-1],

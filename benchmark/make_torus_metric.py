@@ -50,13 +50,19 @@ def main():
             s = ((j + 1) % a.nv) * a.nu + i
             faces.append((p, q, r))
             faces.append((p, r, s))
-    with open(a.off, "w") as f:
+    write_off_and_metric(a.off, a.metric, pts, faces, tensors)
+
+
+def write_off_and_metric(off, metric, pts, faces, tensors):
+    """The mesh as OFF and one tensor (m11 m12 m13 m22 m23 m33) per vertex as the tool's metric file, in
+    full precision (also make_cyclide_metric.py's writer)."""
+    with open(off, "w") as f:
         f.write("OFF\n%d %d 0\n" % (len(pts), len(faces)))
         for x in pts:
             f.write("%.17g %.17g %.17g\n" % x)
         for t in faces:
             f.write("3 %d %d %d\n" % t)
-    with open(a.metric, "w") as f:
+    with open(metric, "w") as f:
         f.write("%d\n" % len(tensors))
         for t in tensors:
             f.write(" ".join("%.17g" % x for x in t) + "\n")
