@@ -1172,4 +1172,94 @@ BOOST_AUTO_TEST_CASE(a_cap_between_three_crease_sites_is_split_across_its_long_e
   BOOST_TEST(changed == 1u);
 }
 
+namespace {
+
+// A coin: a closed prism over a regular k-gon of radius 1 and height `thickness` (one row of quads on the
+// side, each cap a fan around its centre): its two rims are closed crease loops `thickness` apart.
+AC::Input_surface make_coin(int k, double thickness)
+{
+  std::vector<Eigen::Vector3d> points;
+  const double pi = 3.14159265358979323846;
+  for(double z : {-0.5 * thickness, 0.5 * thickness})
+    for(int i = 0; i < k; ++i) points.push_back(Eigen::Vector3d(std::cos(2 * pi * i / k), std::sin(2 * pi * i / k), z));
+  const std::size_t bottom = points.size(), top = bottom + 1;
+  points.push_back(Eigen::Vector3d(0, 0, -0.5 * thickness));
+  points.push_back(Eigen::Vector3d(0, 0, 0.5 * thickness));
+  std::vector<AC::Input_surface::Face> faces;
+  for(int i = 0; i < k; ++i) {
+    const std::size_t a = std::size_t(i), b = std::size_t((i + 1) % k);
+    faces.push_back({{a, b, b + std::size_t(k)}});
+    faces.push_back({{a, b + std::size_t(k), a + std::size_t(k)}});
+    faces.push_back({{bottom, b, a}});
+    faces.push_back({{top, a + std::size_t(k), b + std::size_t(k)}});
+  }
+  return AC::Input_surface(points, faces);
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(two_creases_closer_than_an_output_edge_are_both_kept_with_the_metric_scaled_between_them)
+{
+  // issue 15 (features/feature_size.h): the rims of a coin 0.03 thick, at 2000 vertices (output edges
+  // about 0.06): without the feature sizing the second rim's sites fall within half an edge of the first's
+  // and are left out (measured: 50 % of the crease length covered); with it the metric is scaled up along
+  // the side band and both rims are chains of output edges (measured 100 %, theta_min 34.6, G_avg 0.883)
+  const AC::Input_surface coin = make_coin(96, 0.03);
+  const std::size_t n = 2000;
+  AC::Remeshing_result off;
+  AC::remesh_in_domain<AC::Spherical_domain>(coin, AC::Uniform_metric(), off, AC::parameters::number_of_vertices(n).feature_sizing(false));
+  BOOST_TEST_MESSAGE("coin without the sizing: " << 100 * off.features.covered_share << " % covered, G_avg " << off.quality.G_avg
+                                                 << ", theta_min " << off.quality.theta_min);
+  BOOST_TEST(!off.feature_sizing.applied);
+  BOOST_TEST(off.feature_sizing.narrow_points == 0u);  // not even measured
+  BOOST_TEST(off.features.covered_share < 0.75);
+  AC::Remeshing_result r;
+  const AC::Remeshed_surface out =
+    AC::remesh_in_domain<AC::Spherical_domain>(coin, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+  const AC::Feature_sizing_report& s = r.feature_sizing;
+  BOOST_TEST_MESSAGE("coin with the sizing: " << 100 * r.features.covered_share << " % covered, G_avg " << r.quality.G_avg
+                                              << ", theta_min " << r.quality.theta_min << "; gap " << s.gap_min << " h, scale up to "
+                                              << s.scale_max << ", area x " << s.area_factor << ", " << s.narrow_points << " narrow points");
+  BOOST_TEST(s.applied);
+  BOOST_TEST(s.narrow_points > 0u);
+  BOOST_TEST(s.gaps_left == 0u);
+  BOOST_TEST((s.gap_min > 0.3 && s.gap_min < 0.7));  // 0.03 over an output edge of about 0.06 (0.49 measured)
+  BOOST_TEST((s.scale_max > 1.5 && s.scale_max <= 6.0));
+  BOOST_TEST((s.area_factor > 1.0 && s.area_factor <= 6.0));
+  BOOST_TEST(s.vertices_scaled == 192u);  // the rims' vertices, and not the caps' centres
+  BOOST_TEST(out.points.size() == n);
+  BOOST_TEST(r.inverted_triangles == 0u);
+  BOOST_TEST(r.features.covered_share >= 0.99);
+  BOOST_TEST(r.quality.theta_min >= 25.0);
+  // the JSON report says it
+  const nlohmann::json j = AC::IO::report_json(r);
+  BOOST_TEST(j.at("feature_sizing").at("applied").get<bool>());
+  BOOST_TEST(j.at("feature_sizing").at("narrow_points").get<std::size_t>() == s.narrow_points);
+}
+
+BOOST_AUTO_TEST_CASE(feature_sizing_leaves_alone_corners_wide_gaps_and_what_it_cannot_afford)
+{
+  // the cube's creases meet at its corners (not a gap: the path through the corner is short), so no
+  // sizing; the coin at 600 vertices would need more than 5/6 of the vertices near its rims: measured,
+  // not applied, and the output is the one without the sizing
+  AC::Remeshing_result cube;
+  AC::remesh_in_domain<AC::Spherical_domain>(make_grid_cube(4), AC::Uniform_metric(), cube,
+                                             AC::parameters::number_of_vertices(std::size_t(500)));
+  BOOST_TEST(cube.feature_sizing.narrow_points == 0u);
+  BOOST_TEST(!cube.feature_sizing.applied);
+  const AC::Input_surface coin = make_coin(96, 0.03);
+  AC::Remeshing_result small, plain;
+  const AC::Remeshed_surface a =
+    AC::remesh_in_domain<AC::Spherical_domain>(coin, AC::Uniform_metric(), small, AC::parameters::number_of_vertices(std::size_t(600)));
+  const AC::Remeshed_surface b = AC::remesh_in_domain<AC::Spherical_domain>(
+    coin, AC::Uniform_metric(), plain, AC::parameters::number_of_vertices(std::size_t(600)).feature_sizing(false));
+  BOOST_TEST(small.feature_sizing.narrow_points > 0u);
+  BOOST_TEST(!small.feature_sizing.applied);
+  BOOST_TEST(small.feature_sizing.gaps_left == small.feature_sizing.narrow_points);
+  BOOST_TEST(small.feature_sizing.area_factor == 1.0);
+  BOOST_TEST((a.points == b.points));
+  const nlohmann::json j = AC::IO::report_json(small);
+  BOOST_TEST(!j.at("feature_sizing").at("applied").get<bool>());
+}
+
 BOOST_AUTO_TEST_SUITE_END()  // features

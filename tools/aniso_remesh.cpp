@@ -93,6 +93,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .corner_angle(o.corner_angle)
                     .feature_angle(aniso_remesh::feature_angle(o))
                     .drop_ragged_creases(!o.keep_ragged_creases)
+                    .feature_sizing(!o.no_feature_sizing)
                     .feature_edges(marked.edges)
                     .feature_vertices(marked.vertices)
                     .planar_boundary(o.planar_boundary == "lengths" ? AC::Planar_boundary::KEEP_LENGTHS
@@ -172,6 +173,18 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
       std::printf("features     input %zu curves (crease length %.4g), %zu corners; output keeps %zu of the corners and covers "
                   "%.1f %% of the crease length\n",
                   ft.curves, ft.crease_length, ft.corners, ft.corners_kept, 100.0 * ft.covered_share);
+    const AC::Feature_sizing_report& fs = result.feature_sizing;
+    if(!fs.applied && fs.narrow_points > 0)
+      std::printf("features     sizing: feature curves run as close as %.3g output edges at %zu points; not refined there: "
+                  "that would take more than half of the output's vertices, or the gap is below 1/7.8 of an edge (more "
+                  "vertices would let the output resolve it)\n",
+                  fs.gap_min, fs.narrow_points);
+    if(fs.applied) {
+      std::printf("features     sizing: feature curves run as close as %.3g output edges; the metric scaled up there (up to %.3g "
+                  "times, at %zu input vertices; metric area x %.3g, the rest coarser; %zu of %zu narrow points left as they "
+                  "are); --no-feature-sizing turns it off\n",
+                  fs.gap_min, fs.scale_max, fs.vertices_scaled, fs.area_factor, fs.gaps_left, fs.narrow_points);
+    }
     if(ft.ragged_components_dropped > 0)
       std::printf("features     %zu ragged crease components left out (length %.4g): their triangles bend at other edges too "
                   "(noise or a staircase, not a sharp crease)%s\n",

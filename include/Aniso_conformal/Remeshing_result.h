@@ -50,6 +50,26 @@ struct Stretch_limit_report {
 
 /*!
  * \ingroup PkgAnisoConformalMain
+ * the feature sizing of `remesh()` (`feature_sizing`, default on; issue 15): where two feature curves (crease
+ * curves, boundary loops) run closer than an output triangle's height, the metric's lengths are multiplied
+ * by a scale so that the output's edges there are about as long as the gap is wide (1.3 times), graded
+ * away from it by at most a factor 1.2 per output edge (Borouchaki, Hecht and Frey 1998, isotropic
+ * form), at most 6; the number of output vertices stays the one asked for, so the rest is a little coarser.
+ * `Remeshing_result::quality` is measured in the scaled metric (the same angles and `G` where the scale
+ * is constant over a triangle: the scale is isotropic).
+ */
+struct Feature_sizing_report {
+  bool applied = false;             ///< `true` if the metric was scaled (the other figures are filled when `narrow_points > 0`)
+  std::size_t narrow_points = 0;    ///< samples of the feature curves (a quarter of an output edge apart) across a narrow gap
+  std::size_t vertices_scaled = 0;  ///< input vertices where the scale is above 1
+  double gap_min = 0;               ///< the narrowest gap in the metric, over the output edge length of the unscaled metric
+  double scale_max = 1;             ///< the largest scale (at most 6)
+  double area_factor = 1;           ///< the metric's area after the scaling over before (at most 2): the unscaled parts' edges grow by its square root
+  std::size_t gaps_left = 0;        ///< narrow points left as they are: a gap below 1 / 7.8 output edges, or past the area budget (narrowest first)
+};
+
+/*!
+ * \ingroup PkgAnisoConformalMain
  * which of the runs of `remesh()` that follow the input's creases (issue 15) gave the output: up to four
  * runs from the background after stage 2's refinement (doc/manual.md, "Sharp features");
  * `crease_run_name()` spells each value as the JSON report and the tool's summary write it
@@ -164,6 +184,8 @@ struct Remeshing_result {
   Domain_diagnostics domain_diagnostics;
   /// the stretch bound, when the run in the metric as given folded triangles (`Stretch_limit_report`)
   Stretch_limit_report stretch_limit;
+  /// the feature sizing, when two feature curves run close (`Feature_sizing_report`)
+  Feature_sizing_report feature_sizing;
   /// wall time (s) of the runs whose output was thrown away: the runs with crease sites that failed
   /// (`creases_not_followed`, `crease_run`), under the automatic choice, the topology's own domain
   /// before the cone domain took over (`domain_choice`), and the run in the metric as given before the

@@ -142,6 +142,11 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *     components make a quarter of the detected crease length, every detected crease is (a rough surface:
  *     a noisy scan, a crease across the triangles); the user's marked features stay
  *     (`Feature_report::ragged_components_dropped`, `rough_surface`; manual, "Sharp features");
+ *   - `feature_sizing` (default `true`): where two feature curves (creases, boundary loops) run closer
+ *     than an output triangle's height, the metric's lengths are scaled up so that the output's edges there
+ *     are about 1.3 times the gap, graded by a factor 1.2 per edge, at most 6 times, all gaps or none
+ *     within an area factor of 6; the vertex count stays the one asked for (`Feature_sizing_report` in
+ *     `Remeshing_result::feature_sizing`; `internal/features/feature_size.h`; manual, "Sharp features");
  *   - `feature_edges` (`std::vector<std::array<std::size_t, 2>>`, default none) and `feature_vertices`
  *     (`std::vector<std::size_t>`, default none): the user's own creases (pairs of input vertex indices)
  *     and corners, kept whatever their angle, on top of those `feature_angle` finds (`detect_features()`;

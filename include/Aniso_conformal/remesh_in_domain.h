@@ -15,6 +15,7 @@
 #include <Aniso_conformal/extract_dual_mesh.h>
 #include <Aniso_conformal/internal/features/boundary_distance.h>
 #include <Aniso_conformal/internal/features/crease_sites.h>
+#include <Aniso_conformal/internal/features/feature_size.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/features/ragged_creases.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
@@ -523,6 +524,8 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
  * A run whose output has folded triangles, in a metric asking for more stretch than straight edges can
  * follow where its long axis turns, is made again with the stretch bounded there (`Stretch_limit_report`
  * in `Remeshing_result::stretch_limit`, which says what was bounded; `quality` is then in that metric).
+ * Where two feature curves run closer than an output triangle's height, the metric is first scaled up
+ * there (`feature_sizing`, default on; `Feature_sizing_report` in `Remeshing_result::feature_sizing`).
  * `remesh()` is this function behind one switch on the topology; call it directly to compile only the
  * domain you need (each domain brings its own CGAL triangulations, which dominate the build time).
  *
@@ -547,8 +550,22 @@ Remeshed_surface remesh_in_domain(const Input_surface& surface, const Anisotropi
   typename internal::Visitor_reference<NamedParameters>::type visitor = internal::get_visitor(np);
   internal::Visitor_handle handle(visitor);
   const internal::Remeshing_options options = internal::Remeshing_options::from(np);
-  return internal::run_with_stretch_bound(surface, metric, result, options,
-                                          [&](const auto& m) { return internal::run_pipeline<Domain>(surface, m, result, options, handle); });
+  const auto run = [&](const auto& m) { return internal::run_pipeline<Domain>(surface, m, result, options, handle); };
+  if(!options.feature_sizing) return internal::run_with_stretch_bound(surface, metric, result, options, run);
+  // feature curves close together: the metric scaled up there (features/feature_size.h)
+  const internal::Feature_sizing sizing = internal::feature_sizing(surface, metric, options);
+  const Feature_sizing_report report{bool(sizing.field), sizing.narrow_points, sizing.vertices_scaled, sizing.gap_min,
+                                     sizing.scale_max,    sizing.area_factor,  sizing.gaps_left};
+  Remeshed_surface out;
+  if(const auto field = sizing.field) {
+    const internal::Adjusted_metric scaled(
+        surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, {},
+        [field](const Eigen::Vector3d& x) { return field->scale(x); });
+    out = internal::run_with_stretch_bound(surface, scaled, result, options, run);
+  } else
+    out = internal::run_with_stretch_bound(surface, metric, result, options, run);
+  result.feature_sizing = report;
+  return out;
 }
 
 /*!

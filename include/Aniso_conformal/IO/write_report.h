@@ -89,11 +89,39 @@ inline nlohmann::json features_json(const Remeshing_result& r)
   }
   return f;
 }
+
+// the report's `stretch_limit` and `feature_sizing` objects, when the metric was adjusted (or a gap measured)
+inline void add_metric_adjustments(const Remeshing_result& r, nlohmann::json& j)
+{
+  if(r.stretch_limit.applied) {  // the run in the metric as given folded triangles: the stretch bounded (Stretch_limit_report)
+    const Stretch_limit_report& l = r.stretch_limit;
+    j["stretch_limit"] = {{"vertices_limited", l.vertices_limited},
+                          {"stretch_asked_max", report_number(l.stretch_asked_max)},
+                          {"bound_min", report_number(l.bound_min)},
+                          {"bound_median", report_number(l.bound_median)},
+                          {"reason", l.reason},
+                          {"given_metric_quality",
+                           {{"G_min", report_number(l.given_G_min)},
+                            {"G_avg", report_number(l.given_G_avg)},
+                            {"theta_min", report_number(l.given_theta_min)},
+                            {"percent_below_30", report_number(l.given_percent_below_30)}}}};
+  }
+  if(r.feature_sizing.narrow_points > 0) {  // feature curves close together: the metric scaled up there (Feature_sizing_report)
+    const Feature_sizing_report& s = r.feature_sizing;
+    j["feature_sizing"] = {{"applied", s.applied},
+                           {"narrow_points", s.narrow_points},
+                           {"vertices_scaled", s.vertices_scaled},
+                           {"gap_min", report_number(s.gap_min)},
+                           {"scale_max", report_number(s.scale_max)},
+                           {"area_factor", report_number(s.area_factor)},
+                           {"gaps_left", s.gaps_left}};
+  }
+}
 } // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalIO
- * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did; `reseeded`, why a first run at a boundary loop failed, when the output is that of the run with the next seed; `stretch_limit`, when the run in the metric as given failed and the output is that of the run with the stretch bounded (`Stretch_limit_report`: `vertices_limited`, `stretch_asked_max`, `bound_min`, `bound_median`, `reason`, and `given_metric_quality`, the output's `G_min`, `G_avg`, `theta_min`, `percent_below_30` in the metric as given)); `input` and `background` (vertices, faces); `output`
+ * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did; `reseeded`, why a first run at a boundary loop failed, when the output is that of the run with the next seed; `stretch_limit`, when the run in the metric as given failed and the output is that of the run with the stretch bounded (`Stretch_limit_report`: `vertices_limited`, `stretch_asked_max`, `bound_min`, `bound_median`, `reason`, and `given_metric_quality`, the output's `G_min`, `G_avg`, `theta_min`, `percent_below_30` in the metric as given)); `feature_sizing`, when two feature curves run closer than an output triangle's height (`Feature_sizing_report`: `applied`, `narrow_points`, `vertices_scaled`, `gap_min`, `scale_max`, `area_factor`, `gaps_left`); `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
  * histogram; `metric_edge_length`: the mean edge length in the metric and the standard deviation, min and
@@ -128,19 +156,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
   j["domain"] = domain_name(r.domain);
   if(!r.domain_choice.empty()) j["domain_choice"] = r.domain_choice;  // why the automatic choice left the topology's own domain
   if(!r.reseeded.empty()) j["reseeded"] = r.reseeded;  // why the first run failed at a boundary loop (the output: seed + 1)
-  if(r.stretch_limit.applied) {  // the run in the metric as given folded triangles: the stretch bounded (Stretch_limit_report)
-    const Stretch_limit_report& l = r.stretch_limit;
-    j["stretch_limit"] = {{"vertices_limited", l.vertices_limited},
-                          {"stretch_asked_max", report_number(l.stretch_asked_max)},
-                          {"bound_min", report_number(l.bound_min)},
-                          {"bound_median", report_number(l.bound_median)},
-                          {"reason", l.reason},
-                          {"given_metric_quality",
-                           {{"G_min", report_number(l.given_G_min)},
-                            {"G_avg", report_number(l.given_G_avg)},
-                            {"theta_min", report_number(l.given_theta_min)},
-                            {"percent_below_30", report_number(l.given_percent_below_30)}}}};
-  }
+  internal::add_metric_adjustments(r, j);
   j["input"] = {{"vertices", r.input_vertices}, {"faces", r.input_faces}};
   j["background"] = {{"vertices", r.background_vertices}, {"faces", r.background_faces}};
   j["output"] = {{"vertices", q.number_of_vertices},

@@ -140,24 +140,33 @@ std::vector<double> stretch_bounds(const Input_surface& surface, const Anisotrop
   return bound;
 }
 
-// A metric with its stretch lowered to the per-vertex bounds of stretch_bounds(), interpolated linearly in
-// the input's triangles (a model of AnisotropicMetric over the same input; a point whose vertex indices lie
-// outside the input, a patch's, keeps the given tensor). The given metric is held through a function, so
-// that the pipeline is compiled once for every metric type the bound wraps (remesh_in_domain()).
-class Stretch_limited_metric {
+// A metric adjusted: its lengths multiplied by `scale` at the point (the feature sizing,
+// features/feature_size.h; none when empty), then its stretch lowered to `bounds` per input vertex
+// (stretch_bounds(); none when empty), interpolated linearly in the input's triangles (a model of AnisotropicMetric over the
+// same input; a point whose vertex indices lie outside the input, a patch's, keeps the given tensor). The
+// given metric is held through a function, so that the pipeline is compiled once for every metric type
+// these adjustments wrap (remesh_in_domain()).
+class Adjusted_metric {
 public:
   typedef Eigen::Matrix3d Tensor;
-  Stretch_limited_metric(const Input_surface& surface, std::function<Tensor(const Surface_point&)> given, std::vector<double> bounds)
-      : m_surface(surface), m_given(std::move(given)), m_bounds(std::move(bounds))
+  Adjusted_metric(const Input_surface& surface, std::function<Tensor(const Surface_point&)> given, std::vector<double> bounds,
+                  std::function<double(const Eigen::Vector3d&)> scale = {})
+      : m_surface(surface), m_given(std::move(given)), m_bounds(std::move(bounds)), m_scale(std::move(scale))
   {
   }
   Tensor tensor(const Surface_point& p) const
   {
-    const Tensor M = m_given(p);
+    Tensor M = m_given(p);
+    for(int k = 0; k < 3; ++k)
+      if(p.vertices[k] >= m_surface.number_of_vertices()) return M;
+    if(m_scale) {
+      const double s = m_scale(p.position);
+      M *= s * s;
+    }
+    if(m_bounds.empty()) return M;
     Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
     double r = 0;
     for(int k = 0; k < 3; ++k) {
-      if(p.vertices[k] >= m_bounds.size()) return M;
       r += p.barycentric[k] * std::min(m_bounds[p.vertices[k]], 1e6);
       nrm += p.barycentric[k] * m_surface.vertex_normals()[p.vertices[k]];
     }
@@ -170,6 +179,7 @@ private:
   const Input_surface& m_surface;
   std::function<Tensor(const Surface_point&)> m_given;
   std::vector<double> m_bounds;
+  std::function<double(const Eigen::Vector3d&)> m_scale;
 };
 
 // `run(metric)`, the pipeline; if it fails with Convergence_failure for folded (inverted) output triangles
@@ -207,7 +217,7 @@ Remeshed_surface run_with_stretch_bound(const Input_surface& surface, const Anis
     limit.bound_median = limited[limited.size() / 2];
     limit.reason = e.what();
     const double failed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const Stretch_limited_metric bounded(
+    const Adjusted_metric bounded(
         surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, std::move(bounds));
     result = Remeshing_result();
     Remeshed_surface out;

@@ -58,6 +58,7 @@ struct Remeshing_options {
   double corner_angle = defaults::corner_angle;
   double feature_angle = defaults::feature_angle;
   bool drop_ragged_creases = defaults::drop_ragged_creases;
+  bool feature_sizing = defaults::feature_sizing;
   std::vector<std::array<std::size_t, 2>> feature_edges;  // the user's creases (none by default)
   std::vector<std::size_t> feature_vertices;              // the user's corners (none by default)
   unsigned number_of_threads = defaults::number_of_threads;
@@ -79,6 +80,7 @@ struct Remeshing_options {
     o.corner_angle = internal::corner_angle(np);
     o.feature_angle = internal::feature_angle(np);
     o.drop_ragged_creases = internal::drop_ragged_creases(np);
+    o.feature_sizing = internal::feature_sizing(np);
     o.feature_edges = internal::feature_edges(np);
     o.feature_vertices = internal::feature_vertices(np);
     o.number_of_threads = internal::number_of_threads(np);
