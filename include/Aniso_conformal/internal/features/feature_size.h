@@ -191,6 +191,27 @@ struct Narrow_feature_points {
   double gap_min = std::numeric_limits<double>::infinity();
 };
 
+// Keeps the narrow points of `out` whose gap is resolved whole (their pairs of lines in `pair_of`; the
+// pairs with a point below the cap in `unresolved`); the others are counted in `too_narrow`.
+inline void keep_whole_gaps(Narrow_feature_points& out, const std::vector<std::pair<std::size_t, std::size_t>>& pair_of,
+                            const std::set<std::pair<std::size_t, std::size_t>>& unresolved)
+{
+  // a gap is resolved whole or not at all: refining the wider part of a gap whose narrowest part stays
+  // as it is only moves the flat triangles; and only a gap along which the two lines run for 1.5 output
+  // edges or more (12 samples on the two) is one: two lines that come close at a point make a flat
+  // triangle or two, which a refinement around them does not mend (CGAL's hand, its scanned creases a
+  // few hundredths of an output edge apart here and there: theta_min 33.7 -> 27.1 with them refined)
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> samples;
+  for(const auto& pr : pair_of) ++samples[pr];
+  std::size_t kept = 0;
+  for(std::size_t j = 0; j < out.points.size(); ++j)
+    if(unresolved.count(pair_of[j]) || samples[pair_of[j]] < 12)
+      ++out.too_narrow;
+    else
+      out.points[kept++] = out.points[j];
+  out.points.resize(kept);
+}
+
 inline Narrow_feature_points narrow_feature_points(const Input_surface& surface, const std::vector<Feature_polyline>& lines,
                                                    const std::vector<Eigen::Matrix3d>& Q, double h, double cap, double gap_to_size)
 {
@@ -303,20 +324,7 @@ inline Narrow_feature_points narrow_feature_points(const Input_surface& surface,
       }
     }
   }
-  // a gap is resolved whole or not at all: refining the wider part of a gap whose narrowest part stays
-  // as it is only moves the flat triangles; and only a gap along which the two lines run for 1.5 output
-  // edges or more (12 samples on the two) is one: two lines that come close at a point make a flat
-  // triangle or two, which a refinement around them does not mend (CGAL's hand, its scanned creases a
-  // few hundredths of an output edge apart here and there: theta_min 33.7 -> 27.1 with them refined)
-  std::map<std::pair<std::size_t, std::size_t>, std::size_t> samples;
-  for(const auto& pr : pair_of) ++samples[pr];
-  std::size_t kept = 0;
-  for(std::size_t j = 0; j < out.points.size(); ++j)
-    if(unresolved.count(pair_of[j]) || samples[pair_of[j]] < 12)
-      ++out.too_narrow;
-    else
-      out.points[kept++] = out.points[j];
-  out.points.resize(kept);
+  keep_whole_gaps(out, pair_of, unresolved);
   return out;
 }
 
