@@ -175,12 +175,12 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                   ft.curves, ft.crease_length, ft.corners, ft.corners_kept, 100.0 * ft.covered_share);
     const AC::Feature_sizing_report& fs = result.feature_sizing;
     if(!fs.applied && fs.narrow_points > 0)
-      std::printf("features     sizing: feature curves run as close as %.3g output edges at %zu points; not refined there: "
+      std::printf("features     sizing: crease curves run as close as %.3g output edges at %zu points; not refined there: "
                   "that would take more than half of the output's vertices, or the gap is below 1/7.8 of an edge (more "
                   "vertices would let the output resolve it)\n",
                   fs.gap_min, fs.narrow_points);
     if(fs.applied) {
-      std::printf("features     sizing: feature curves run as close as %.3g output edges; the metric scaled up there (up to %.3g "
+      std::printf("features     sizing: crease curves run as close as %.3g output edges; the metric scaled up there (up to %.3g "
                   "times, at %zu input vertices; metric area x %.3g, the rest coarser; %zu of %zu narrow points left as they "
                   "are); --no-feature-sizing turns it off\n",
                   fs.gap_min, fs.scale_max, fs.vertices_scaled, fs.area_factor, fs.gaps_left, fs.narrow_points);

@@ -54,7 +54,7 @@ struct Options {
   double feature_angle = 60;  // sharp features: angle between face normals above which an edge is a crease
   bool no_features = false;   // --no-features: no crease (feature angle 180)
   bool keep_ragged_creases = false;  // --keep-ragged-creases: no crease component left out as noise
-  bool no_feature_sizing = false;    // --no-feature-sizing: the metric not scaled where feature curves run close
+  bool no_feature_sizing = false;    // --no-feature-sizing: the metric not scaled where crease curves run close
   std::string features_file;  // --features FILE: the user's crease edges and corners
   std::string planar_boundary = "automatic";
   std::string surface_optimization = "repair";
@@ -296,7 +296,7 @@ inline void declare_options(CLI::App& app, Options& o)
     ->excludes(no_features)
     ->group(re);
   app.add_flag("--no-feature-sizing", o.no_feature_sizing,
-               "do not refine where two feature curves (creases, boundary loops) run closer than an output triangle's "
+               "do not refine where two crease curves run closer than an output triangle's "
                "height (by default the metric is scaled up there so that the edges are about as long as the gap is wide, "
                "the rest a little coarser)")
     ->group(re);

@@ -50,8 +50,7 @@ struct Stretch_limit_report {
 
 /*!
  * \ingroup PkgAnisoConformalMain
- * the feature sizing of `remesh()` (`feature_sizing`, default on; issue 15): where two feature curves (crease
- * curves, boundary loops) run closer than an output triangle's height, the metric's lengths are multiplied
+ * the feature sizing of `remesh()` (`feature_sizing`, default on; issue 15): where two crease curves run closer than an output triangle's height, the metric's lengths are multiplied
  * by a scale so that the output's edges there are about as long as the gap is wide (1.3 times), graded
  * away from it by at most a factor 1.2 per output edge (Borouchaki, Hecht and Frey 1998, isotropic
  * form), at most 6; the number of output vertices stays the one asked for, so the rest is a little coarser.
@@ -60,7 +59,7 @@ struct Stretch_limit_report {
  */
 struct Feature_sizing_report {
   bool applied = false;             ///< `true` if the metric was scaled (the other figures are filled when `narrow_points > 0`)
-  std::size_t narrow_points = 0;    ///< samples of the feature curves (a quarter of an output edge apart) across a narrow gap
+  std::size_t narrow_points = 0;    ///< samples of the crease curves (a quarter of an output edge apart) across a narrow gap
   std::size_t vertices_scaled = 0;  ///< input vertices where the scale is above 1
   double gap_min = 0;               ///< the narrowest gap in the metric, over the output edge length of the unscaled metric
   double scale_max = 1;             ///< the largest scale (at most 6)
@@ -184,7 +183,7 @@ struct Remeshing_result {
   Domain_diagnostics domain_diagnostics;
   /// the stretch bound, when the run in the metric as given folded triangles (`Stretch_limit_report`)
   Stretch_limit_report stretch_limit;
-  /// the feature sizing, when two feature curves run close (`Feature_sizing_report`)
+  /// the feature sizing, when two crease curves run close (`Feature_sizing_report`)
   Feature_sizing_report feature_sizing;
   /// wall time (s) of the runs whose output was thrown away: the runs with crease sites that failed
   /// (`creases_not_followed`, `crease_run`), under the automatic choice, the topology's own domain

@@ -142,7 +142,7 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *     components make a quarter of the detected crease length, every detected crease is (a rough surface:
  *     a noisy scan, a crease across the triangles); the user's marked features stay
  *     (`Feature_report::ragged_components_dropped`, `rough_surface`; manual, "Sharp features");
- *   - `feature_sizing` (default `true`): where two feature curves (creases, boundary loops) run closer
+ *   - `feature_sizing` (default `true`): where two crease curves run closer
  *     than an output triangle's height, the metric's lengths are scaled up so that the output's edges there
  *     are about 1.3 times the gap, graded by a factor 1.2 per edge, at most 6 times, all gaps or none
  *     within an area factor of 6; the vertex count stays the one asked for (`Feature_sizing_report` in

@@ -524,7 +524,7 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
  * A run whose output has folded triangles, in a metric asking for more stretch than straight edges can
  * follow where its long axis turns, is made again with the stretch bounded there (`Stretch_limit_report`
  * in `Remeshing_result::stretch_limit`, which says what was bounded; `quality` is then in that metric).
- * Where two feature curves run closer than an output triangle's height, the metric is first scaled up
+ * Where two crease curves run closer than an output triangle's height, the metric is first scaled up
  * there (`feature_sizing`, default on; `Feature_sizing_report` in `Remeshing_result::feature_sizing`).
  * `remesh()` is this function behind one switch on the topology; call it directly to compile only the
  * domain you need (each domain brings its own CGAL triangulations, which dominate the build time).
