@@ -564,9 +564,12 @@ BOOST_AUTO_TEST_CASE(the_cow_with_its_noisy_creases_remeshes_without_feature_sit
   BOOST_TEST(plain.points.size() == n);
   BOOST_TEST(rd.inverted_triangles == 0u);
   BOOST_TEST(rd.quality.theta_min >= 25.0);  // measured 30.7
+  // the feature sizing off: with it (the default since 2026-12-07) the cow's noisy creases close to each
+  // other are refined and the first run with crease sites stands (measured: run "refined", G_avg 0.913,
+  // theta_min 18.3), so the fallback this test is about is not reached
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out =
-    AC::remesh(cow, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n).drop_ragged_creases(false));
+  const AC::Remeshed_surface out = AC::remesh(cow, AC::Uniform_metric(), r,
+                                              AC::parameters::number_of_vertices(n).drop_ragged_creases(false).feature_sizing(false));
   BOOST_TEST_MESSAGE("cow -> " << n << " with the defaults: run " << AC::crease_run_name(r.crease_run) << "; corners not kept: "
                                << r.corners_not_kept << "; G_avg " << r.quality.G_avg << " theta_min " << r.quality.theta_min << ", "
                                << r.total_seconds() << " s of which " << r.discarded_seconds << " thrown away");
