@@ -374,31 +374,26 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
   out.gap_min = gap_min / h;
   out.gaps_left = out.narrow_points;
   if(narrow.empty()) return out;
-  // the field of the first k gaps, its h_s (the output edge length in the scaled metric, by fixed-point steps
-  // on the scaled area: each face's mean of scale^2 over a barycentric grid of spacing at most a quarter of
-  // the field's cell, only on the faces the field of all of them reaches)
+  // the field of the gaps and its h_s (the output edge length in the scaled metric, by fixed-point steps on
+  // the scaled area: each face's mean of scale^2 over a barycentric grid of spacing at most a quarter of
+  // the field's cell, only on the faces the field reaches)
   const double largest_h = std::sqrt(area_budget) * h;
-  auto make_field = [&](std::size_t k) {
-    std::vector<Feature_size_field::Source> sources;
-    for(std::size_t i = 0; i < k; ++i) sources.push_back(narrow[i].second);
-    return std::make_shared<Feature_size_field>(std::move(sources), largest_h, grading, cap);
-  };
+  std::vector<Feature_size_field::Source> sources;
+  for(const auto& x : narrow) sources.push_back(x.second);
+  auto best = std::make_shared<Feature_size_field>(std::move(sources), largest_h, grading, cap);
   std::vector<std::size_t> reached;
   double unreached_area = 0;
-  {
-    const auto all = make_field(narrow.size());
-    all->set_scaled_edge_length(largest_h);
-    for(std::size_t f = 0; f < face_area.size(); ++f) {
-      const auto& t = surface.faces()[f];
-      const Eigen::Vector3d c = (P[t[0]] + P[t[1]] + P[t[2]]) / 3;
-      const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
-      bool near = diam > 0.25 * all->cell();
-      for(const Eigen::Vector3d& x : {P[t[0]], P[t[1]], P[t[2]], c}) near = near || all->reaches(x);
-      if(near)
-        reached.push_back(f);
-      else
-        unreached_area += face_area[f];
-    }
+  best->set_scaled_edge_length(largest_h);
+  for(std::size_t f = 0; f < face_area.size(); ++f) {
+    const auto& t = surface.faces()[f];
+    const Eigen::Vector3d c = (P[t[0]] + P[t[1]] + P[t[2]]) / 3;
+    const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
+    bool near = diam > 0.25 * best->cell();
+    for(const Eigen::Vector3d& x : {P[t[0]], P[t[1]], P[t[2]], c}) near = near || best->reaches(x);
+    if(near)
+      reached.push_back(f);
+    else
+      unreached_area += face_area[f];
   }
   auto scaled_area_of = [&](const Feature_size_field& field) {
     double sum_area = unreached_area;
@@ -418,7 +413,7 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
     }
     return sum_area;
   };
-  // the field of the first k gaps with its h_s; its area factor (infinite if h_s would pass largest_h)
+  // the field's h_s; its area factor (infinite if h_s would pass largest_h)
   auto settle = [&](Feature_size_field& field) {
     double hs = h, scaled = area;
     for(int it = 0; it < 5; ++it) {
@@ -432,7 +427,6 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
   // all the gaps or none: a field of the widest gaps only leaves the narrowest, those that need it most,
   // between refined zones (CGAL's spool at 2000 vertices with 3/4 of its narrow points held: theta_min 18.6,
   // 96.6 % of the crease length covered; with none 17.8 and 88 %; with all 25.6 and 99.6 %)
-  auto best = make_field(narrow.size());
   const double best_factor = settle(*best);
   if(!(best_factor <= area_budget)) return out;  // no field: area_factor stays 1, every narrow point left
   out.area_factor = best_factor;
