@@ -556,8 +556,6 @@ Remeshed_surface remesh_in_domain(const Input_surface& surface, const Anisotropi
   const auto start = std::chrono::steady_clock::now();
   const internal::Feature_sizing sizing = internal::feature_sizing(surface, metric, options);
   const double sizing_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Feature_sizing_report report{bool(sizing.field), sizing.narrow_points, sizing.vertices_scaled, sizing.gap_min,
-                                     sizing.scale_max,    sizing.area_factor,  sizing.gaps_left};
   Remeshed_surface out;
   if(const auto field = sizing.field) {
     const internal::Adjusted_metric scaled(
@@ -566,7 +564,7 @@ Remeshed_surface remesh_in_domain(const Input_surface& surface, const Anisotropi
     out = internal::run_with_stretch_bound(surface, scaled, result, options, run);
   } else
     out = internal::run_with_stretch_bound(surface, metric, result, options, run);
-  result.feature_sizing = report;
+  result.feature_sizing = sizing.report;
   result.seconds[int(Stage::METRIC)] += sizing_seconds;  // the gaps measured: counted as the metric's
   return out;
 }

@@ -6,6 +6,7 @@
 
 #include <Aniso_conformal/Feature_graph.h>
 #include <Aniso_conformal/Input_surface.h>
+#include <Aniso_conformal/Remeshing_result.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
 #include <Aniso_conformal/internal/features/ragged_creases.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
@@ -60,6 +61,14 @@ inline Grid_cell grid_cell(const Eigen::Vector3d& p, double cell)
   return {{std::int64_t(std::floor(p.x() / cell)), std::int64_t(std::floor(p.y() / cell)), std::int64_t(std::floor(p.z() / cell))}};
 }
 
+// the smallest eigenvalue of a metric square root on the tangent plane (the second of three: the normal's
+// is 0), at least 1e-300: a Euclidean length r is at least r times it in the metric
+inline double smallest_tangent_eigenvalue(const Eigen::Matrix3d& q)
+{
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (q + q.transpose()), Eigen::EigenvaluesOnly);
+  return std::max(es.eigenvalues()[1], 1e-300);
+}
+
 // The size field of the feature sizing: narrow points p (on a feature curve, across a gap) with their size
 // sigma_p (in the metric), graded in space: D(x) = min_p sigma_p + (grading - 1) |Q_p (x - p)|; the metric's
 // lengths are multiplied by scale(x) = clamp(h_s / D(x), 1, cap), h_s the output edge length in the scaled
@@ -78,10 +87,8 @@ public:
   {
     // the Euclidean reach of each source: where sigma + g |Q (x - p)| < h, within (h - sigma) / (g lambda_min)
     std::vector<double> reach(m_sources.size());
-    for(std::size_t i = 0; i < reach.size(); ++i) {
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (m_sources[i].Q + m_sources[i].Q.transpose()), Eigen::EigenvaluesOnly);
-      reach[i] = std::max(0.0, largest_h - m_sources[i].sigma) / (m_g * std::max(es.eigenvalues()[1], 1e-300));
-    }
+    for(std::size_t i = 0; i < reach.size(); ++i)
+      reach[i] = std::max(0.0, largest_h - m_sources[i].sigma) / (m_g * smallest_tangent_eigenvalue(m_sources[i].Q));
     std::vector<double> sorted = reach;
     std::sort(sorted.begin(), sorted.end());
     m_cell = std::max(sorted.empty() ? 1.0 : sorted[sorted.size() / 2], sorted.empty() ? 1.0 : sorted.back() / 8);
@@ -106,7 +113,6 @@ public:
   double scale(const Eigen::Vector3d& x) const { return std::clamp(m_scaled_h / size(x), 1.0, m_cap); }
   // h_s, at most largest_h
   void set_scaled_edge_length(double hs) { m_scaled_h = std::min(hs, m_largest_h); }
-  double scaled_edge_length() const { return m_scaled_h; }
   bool reaches(const Eigen::Vector3d& x) const { return m_grid.count(grid_cell(x, m_cell)) > 0; }
   double cell() const { return m_cell; }
 
@@ -116,15 +122,10 @@ private:
   std::unordered_map<Grid_cell, std::vector<std::size_t>, Grid_cell_hash> m_grid;
 };
 
-// what feature_size_field() found (Remeshing_result::feature_sizing is its public form)
+// what feature_size_field() found: the field (none when no gap is held) and its figures
 struct Feature_sizing {
-  std::shared_ptr<const Feature_size_field> field;  // none when no gap is narrow
-  std::size_t narrow_points = 0;    // points of the feature curves across a gap narrower than an output triangle's height
-  std::size_t vertices_scaled = 0;  // input vertices where the scale is above 1
-  double gap_min = 0;               // the narrowest gap, in the metric, over the output edge length h
-  double scale_max = 1;             // the largest scale at an input vertex or a narrow point
-  double area_factor = 1;           // the metric area after the scaling over the area before
-  std::size_t gaps_left = 0;        // narrow points left unresolved: a size below h / cap, or beyond the area budget
+  std::shared_ptr<const Feature_size_field> field;
+  Feature_sizing_report report;  // `applied` is set by feature_size_field() with the field
 };
 
 // the feature polylines: the crease curves, each with its arc length at every
@@ -219,10 +220,6 @@ inline Narrow_feature_points narrow_feature_points(const Input_surface& surface,
   const auto& P = surface.points();
   Narrow_feature_points out;
   const double reach = 0.5 * std::sqrt(3.0) * h;  // gaps up to an equilateral row's height
-  auto smallest = [](const Eigen::Matrix3d& q) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (q + q.transpose()), Eigen::EigenvaluesOnly);
-    return std::max(es.eigenvalues()[1], 1e-300);
-  };
   // the segments in a grid of cell `cell` (the median Euclidean search radius)
   struct Segment {
     std::size_t line, i;
@@ -232,7 +229,7 @@ inline Narrow_feature_points narrow_feature_points(const Input_surface& surface,
   for(std::size_t l = 0; l < lines.size(); ++l)
     for(std::size_t i = 0; i + 1 < lines[l].v.size(); ++i) {
       segments.push_back({l, i});
-      radius.push_back(reach / smallest(Q[lines[l].v[i]]));
+      radius.push_back(reach / smallest_tangent_eigenvalue(Q[lines[l].v[i]]));
     }
   std::vector<double> sorted = radius;
   std::sort(sorted.begin(), sorted.end());
@@ -256,7 +253,7 @@ inline Narrow_feature_points narrow_feature_points(const Input_surface& surface,
   // the gap at a point x of line l at arc length `arc` (Q there: `q`), over the segments near it
   auto gap = [&](std::size_t l, const Eigen::Vector3d& x, double arc, const Eigen::Matrix3d& q) {
     const Feature_polyline& line = lines[l];
-    const double r = reach / smallest(q);
+    const double r = reach / smallest_tangent_eigenvalue(q);
     const int span = 1 + int(std::min(2.0, std::ceil(r / cell)));
     const Grid_cell k = grid_cell(x, cell);
     double best = std::numeric_limits<double>::infinity();
@@ -357,8 +354,7 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
     const double a = metric_segment_length(P[t[0]], P[t[1]], Q[t[0]], Q[t[1]]);
     const double b = metric_segment_length(P[t[1]], P[t[2]], Q[t[1]], Q[t[2]]);
     const double c = metric_segment_length(P[t[2]], P[t[0]], Q[t[2]], Q[t[0]]);
-    const double s = 0.5 * (a + b + c);
-    face_area[f] = std::sqrt(std::max(0.0, s * (s - a) * (s - b) * (s - c)));
+    face_area[f] = heron_area(a, b, c);
     area += face_area[f];
   }
   const double h = std::sqrt(2 * area / (std::sqrt(3.0) * double(n)));
@@ -369,10 +365,10 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
   const auto& narrow = found.points;
   const std::size_t too_narrow = found.too_narrow;
   const double gap_min = found.gap_min;
-  out.narrow_points = narrow.size() + too_narrow;
-  if(out.narrow_points == 0) return out;
-  out.gap_min = gap_min / h;
-  out.gaps_left = out.narrow_points;
+  out.report.narrow_points = narrow.size() + too_narrow;
+  if(out.report.narrow_points == 0) return out;
+  out.report.gap_min = gap_min / h;
+  out.report.gaps_left = out.report.narrow_points;
   if(narrow.empty()) return out;
   // the field of the gaps and its h_s (the output edge length in the scaled metric, by fixed-point steps on
   // the scaled area: each face's mean of scale^2 over a barycentric grid of spacing at most a quarter of
@@ -429,15 +425,18 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
   // 96.6 % of the crease length covered; with none 17.8 and 88 %; with all 25.6 and 99.6 %)
   const double best_factor = settle(*best);
   if(!(best_factor <= area_budget)) return out;  // no field: area_factor stays 1, every narrow point left
-  out.area_factor = best_factor;
-  out.gaps_left = too_narrow;
+  out.report.area_factor = best_factor;
+  out.report.gaps_left = too_narrow;
   for(std::size_t v = 0; v < P.size(); ++v) {
     const double s = best->scale(P[v]);
-    if(s > 1) ++out.vertices_scaled;
-    out.scale_max = std::max(out.scale_max, s);
+    if(s > 1) ++out.report.vertices_scaled;
+    out.report.scale_max = std::max(out.report.scale_max, s);
   }
-  for(const auto& x : narrow) out.scale_max = std::max(out.scale_max, best->scale(x.second.p));
-  if(out.scale_max > 1) out.field = std::move(best);
+  for(const auto& x : narrow) out.report.scale_max = std::max(out.report.scale_max, best->scale(x.second.p));
+  if(out.report.scale_max > 1) {
+    out.field = std::move(best);
+    out.report.applied = true;
+  }
   return out;
 }
 
