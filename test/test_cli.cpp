@@ -298,8 +298,9 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_square_and_writes_its_outputs)
   BOOST_TEST(!j.contains("repairs"));
   // a planar input: the default surface optimisation runs as `always` (since 2026-12-06; before, on this
   // output without an inverted triangle or one below 30 degrees, it did not run), sides sliding
-  BOOST_TEST(r.out.find("optimised    on the surface: ") != std::string::npos);
+  BOOST_TEST(r.out.find("optimised    on the surface (both phases): ") != std::string::npos);
   BOOST_TEST(j.at("surface_optimization").at("ran") == true);
+  BOOST_TEST(j.at("surface_optimization").at("second_phase") == true);
   BOOST_TEST(j.at("surface_optimization").at("sliding_vertices").get<std::size_t>() > 0u);
   BOOST_TEST(j.at("surface_optimization").at("G_avg_after").get<double>() >= j.at("surface_optimization").at("G_avg_before").get<double>());
 }
@@ -310,10 +311,11 @@ BOOST_AUTO_TEST_CASE(tool_optimises_on_the_surface_when_asked)
   std::remove(report.c_str());
   const Run r = run("--domain square --metric fig6 --vertices 300 --iterations 50 --surface-optimization always --report " + report);
   BOOST_TEST(r.status == 0);
-  BOOST_TEST(r.out.find("optimised    on the surface: ") != std::string::npos);
+  BOOST_TEST(r.out.find("optimised    on the surface (both phases): ") != std::string::npos);
   const nlohmann::json j = read_json(report);
   const nlohmann::json& so = j.at("surface_optimization");
   BOOST_TEST(so.at("ran") == true);
+  BOOST_TEST(so.at("second_phase") == true);
   // the square's boundary vertices: its 4 corners fixed, the others slide along its sides
   BOOST_TEST(so.at("fixed_vertices").get<std::size_t>() + so.at("sliding_vertices").get<std::size_t>() ==
              j.at("output").at("boundary_vertices").get<std::size_t>());

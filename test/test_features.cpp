@@ -271,6 +271,37 @@ BOOST_AUTO_TEST_CASE(the_surface_optimisation_keeps_the_corners)
   BOOST_TEST(r.inverted_triangles == 0u);
 }
 
+BOOST_AUTO_TEST_CASE(the_default_optimisation_runs_both_phases_on_an_output_that_follows_creases)
+{
+  // Surface_optimization::REPAIR runs as ALWAYS when the output follows creases (since 2026-12-07): the
+  // crease sites are fixed, the CVT's cells beside them irregular, and the second phase's moves toward
+  // each vertex's ideal point in the metric lift G_avg (CGAL's crease meshes at 2000 vertices: +0.014 to
+  // +0.018, benchmark/features.md). Without creases, on an output with no triangle to repair, REPAIR stays
+  // REPAIR.
+  const AC::Input_surface cube = make_grid_cube(4);
+  AC::Remeshing_result r, always, smooth;
+  const auto np = AC::parameters::number_of_vertices(std::size_t(500));
+  const AC::Remeshed_surface out = AC::remesh_in_domain<AC::Spherical_domain>(cube, AC::Uniform_metric(), r, np);
+  BOOST_TEST(!out.kept_edges.empty());
+  BOOST_TEST(r.surface_optimization.ran);
+  BOOST_TEST(r.surface_optimization.second_phase);
+  BOOST_TEST(r.surface_optimization.G_avg_after > r.surface_optimization.G_avg_before);
+  BOOST_TEST(r.surface_optimization.theta_min_after >= r.surface_optimization.theta_min_before);
+  const AC::Remeshed_surface out_always = AC::remesh_in_domain<AC::Spherical_domain>(
+    cube, AC::Uniform_metric(), always, AC::parameters::number_of_vertices(std::size_t(500)).surface_optimization(AC::Surface_optimization::ALWAYS));
+  BOOST_TEST((out_always.points == out.points));
+  BOOST_TEST((out_always.faces == out.faces));
+  // the same cube without its creases: no kept edge, and the second phase only if asked for
+  const AC::Remeshed_surface out_smooth =
+    AC::remesh_in_domain<AC::Spherical_domain>(cube, AC::Uniform_metric(), smooth, AC::parameters::number_of_vertices(std::size_t(500)).feature_angle(180.0));
+  BOOST_TEST(out_smooth.kept_edges.empty());
+  BOOST_TEST(!smooth.surface_optimization.second_phase);
+  BOOST_TEST_MESSAGE("cube to 500, default optimisation: G_avg " << r.surface_optimization.G_avg_before << " -> "
+                                                                  << r.surface_optimization.G_avg_after << ", theta_min "
+                                                                  << r.surface_optimization.theta_min_before << " -> "
+                                                                  << r.surface_optimization.theta_min_after);
+}
+
 BOOST_AUTO_TEST_CASE(corners_closer_than_half_an_output_edge_are_not_all_fixed)
 {
   // the cube's corners are 2 apart along an edge, 2.83 across a face, 3.46 across the cube (identity metric)

@@ -222,9 +222,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 o.cvt.c_str());
     const AC::Surface_optimization_report& so = result.surface_optimization;
     if(so.ran)
-      std::printf("optimised    on the surface: %zu rounds, %zu flips, %zu vertex moves%s%s; inverted %zu -> %zu, G_min %.4f -> "
+      std::printf("optimised    on the surface%s: %zu rounds, %zu flips, %zu vertex moves%s%s; inverted %zu -> %zu, G_min %.4f -> "
                   "%.4f, G_avg %.4f -> %.4f, theta_min %.2f -> %.2f, %%<30 %.3f -> %.3f\n",
-                  so.rounds, so.flips, so.relocations,
+                  so.second_phase ? " (both phases)" : "", so.rounds, so.flips, so.relocations,
                   so.sliding_vertices ? (" (" + std::to_string(so.sliding_vertices) + " boundary vertices free to slide)").c_str() : "",
                   so.crowded_vertices ? (", " + std::to_string(so.crowded_vertices) + " crowded vertices moved to split edges").c_str() : "",
                   so.inverted_before, so.inverted_after, so.G_min_before, so.G_min_after,

@@ -29,6 +29,7 @@ namespace Aniso_conformal {
  */
 struct Surface_optimization_report {
   bool ran = false;                   ///< `false` when the stage was off or had nothing to repair
+  bool second_phase = false;          ///< the second phase ran (its moves toward each vertex's ideal point in the metric: `Surface_optimization::ALWAYS`, and `REPAIR` where it runs as `ALWAYS`, see `remesh()`)
   std::size_t rounds = 0;             ///< rounds made (flip passes then one relocation pass, and the max-min angle pass, each)
   std::size_t flips = 0;              ///< metric-Delaunay (or repairing) edge flips
   std::size_t relocations = 0;        ///< accepted vertex moves along the input (both relocation passes)
@@ -243,6 +244,7 @@ Surface_optimization_report optimize_surface_mesh(const Input_surface& surface, 
     const Quality_report q = compute_mesh_quality(mesh.points, mesh.faces, optimizer->metric_square_roots(), 1);
     const double G_floor = std::max(internal::defaults::relaxed_G_floor, q.G_min);
     const double angle_floor = std::max(internal::defaults::relaxed_angle_floor, q.theta_min);
+    report.second_phase = true;
     for(std::size_t round = 1; round <= max_rounds; ++round) {
       const std::size_t moved = optimizer->relocation_pass(true, G_floor, angle_floor) + optimizer->angle_pass();
       report.relocations += moved;

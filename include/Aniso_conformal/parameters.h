@@ -71,7 +71,7 @@ enum class Planar_boundary {
  */
 enum class Surface_optimization {
   OFF,     ///< never: the dual mesh of stage 5 is the output (refused if it has an inverted triangle)
-  REPAIR,  ///< only when the dual mesh has inverted triangles, to repair them, or follows creases (`Remeshed_surface::kept_edges`) (the default); in the cone domain (`Cone_domain::optimizes_on_the_surface_by_default`) and on a planar input (`Input_surface::is_planar()`: images, the square, plates), as `ALWAYS`
+  REPAIR,  ///< only when the dual mesh has inverted triangles, to repair them, or a triangle below 30 degrees in the metric (the default); as `ALWAYS` in the cone domain (`Cone_domain::optimizes_on_the_surface_by_default`), on a planar input (`Input_surface::is_planar()`: images, the square, plates) and on an output that follows creases (`Remeshed_surface::kept_edges` not empty)
   ALWAYS   ///< on every output, with the max-min angle pass everywhere (not only next to fixed vertices inside), a second phase of moves toward each vertex's ideal point in the metric, and boundary vertices sliding along straight pieces of the input's boundary (`optimize_surface_mesh()`): the choice for images and for the best quality
 };
 

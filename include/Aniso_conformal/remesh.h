@@ -154,9 +154,10 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *   - `max_adjustment_rounds` (default 50), `max_conformal_iterations` (default 100),
  *     `conformal_tolerance` (default 1e-9): bounds of stages 2 and 3;
  *   - `surface_optimization` (default `Surface_optimization::REPAIR`): when the final optimisation on the
- *     surface runs (`OFF`; `REPAIR`: only when the dual mesh has inverted triangles, a triangle with an
- *     angle below 30 degrees in the metric, or creases followed; in the cone domain and on a planar
- *     input, where flips cannot move the output off the input, as `ALWAYS`; `ALWAYS`);
+ *     surface runs (`OFF`; `REPAIR`: only when the dual mesh has inverted triangles or a triangle with an
+ *     angle below 30 degrees in the metric; as `ALWAYS` in the cone domain and on a planar input, where
+ *     flips cannot move the output off the input, and on an output that follows creases, whose fixed
+ *     crease sites leave the cells beside them irregular; `ALWAYS`);
  *   - `number_of_threads` (default 0 = all cores) for the CVT integration, the dual mesh's projections and
  *     the quality (the output does not depend on it);
  *   - `visitor`: a model of `AnisoConformalVisitor` (default `Default_visitor`).

@@ -405,8 +405,9 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
   }();
 
   // the optimisation on the surface, in the metric; REPAIR as ALWAYS in the cone domain and on a planar
-  // input, where flips cannot move the output off the input (doc/manual.md, the pipeline's stage 5)
-  const bool always = Domain::optimizes_on_the_surface_by_default || surface.is_planar();
+  // input, where flips cannot move the output off the input, and on an output that follows creases, whose
+  // fixed crease sites leave the CVT's cells beside them irregular (doc/manual.md, the pipeline's stage 5)
+  const bool always = Domain::optimizes_on_the_surface_by_default || surface.is_planar() || !out.kept_edges.empty();
   const Surface_optimization optimization =
       always && options.surface_optimization == Surface_optimization::REPAIR ? Surface_optimization::ALWAYS : options.surface_optimization;
   optimize_output(surface, metric, out, optimization, vis, result, options.number_of_threads);

@@ -231,6 +231,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
   const Surface_optimization_report& so = r.surface_optimization;
   if(so.ran)
     j["surface_optimization"] = {{"ran", so.ran},
+                               {"second_phase", so.second_phase},
                                {"rounds", so.rounds},
                                {"flips", so.flips},
                                {"relocations", so.relocations},

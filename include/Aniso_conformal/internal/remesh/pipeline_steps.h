@@ -269,7 +269,8 @@ bool has_angle_below_30_degrees(const AnisotropicMetric& metric, const Remeshed_
 // its max-min angle pass, surface_optimizer.h), or with creases followed
 // (`out.kept_edges`): a free site of the CVT can settle on a crease between two crease sites, and its
 // vertex then makes a flat triangle with their edge (CGAL's fandisk at 2000: theta_min 5.8 degrees, 19.3
-// after the optimisation, which moves it off)
+// after the optimisation, which moves it off). remesh_in_domain() passes ALWAYS for REPAIR when creases
+// are followed, so that last condition serves callers of this step that do not.
 template <typename AnisotropicMetric, typename Visitor>
 void optimize_output(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out,
                      Surface_optimization mode, Visitor& vis, Remeshing_result& result, unsigned threads = 0)
