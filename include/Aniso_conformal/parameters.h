@@ -38,7 +38,7 @@ enum class Parametric_domain {
   AUTOMATIC,   ///< from the topology: a disk goes to the plane, a closed genus-1 surface to the flat torus
   PLANE,       ///< the plane, for topological disks (2D domains, images, open patches)
   FLAT_TORUS,  ///< the flat torus, for closed surfaces of genus 1
-  SPHERE,      ///< the unit sphere, for closed surfaces of genus 0 (not available in this version)
+  SPHERE,      ///< the unit sphere, for closed surfaces of genus 0
   HYPERBOLIC,  ///< the hyperbolic disk, for closed surfaces of genus 2 or more
   CONE         ///< a flat metric with cone singularities, for closed surfaces of any genus (long limbs, any area distortion)
 };
