@@ -110,7 +110,10 @@ public:
       for(std::size_t i : it->second) d = std::min(d, m_sources[i].sigma + m_g * (m_sources[i].Q * (x - m_sources[i].p)).norm());
     return d;
   }
-  double scale(const Eigen::Vector3d& x) const { return std::clamp(m_scaled_h / size(x), 1.0, m_cap); }
+  double scale(const Eigen::Vector3d& x) const { return scale_at_size(size(x)); }
+  // the scale where the graded size is `d` (size() does not depend on h_s: a fixed point on h_s reads
+  // the sizes it stored)
+  double scale_at_size(double d) const { return std::clamp(m_scaled_h / d, 1.0, m_cap); }
   // h_s, at most largest_h
   void set_scaled_edge_length(double hs) { m_scaled_h = std::min(hs, m_largest_h); }
   bool reaches(const Eigen::Vector3d& x) const { return m_grid.count(grid_cell(x, m_cell)) > 0; }
@@ -391,21 +394,28 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
     else
       unreached_area += face_area[f];
   }
+  // the graded sizes at the quadrature points of the reached faces, once: the fixed point below only
+  // changes h_s (`first[k]` .. `first[k + 1]`: the points of face reached[k])
+  std::vector<double> sizes;
+  std::vector<std::size_t> first(1, 0);
+  for(std::size_t f : reached) {
+    const auto& t = surface.faces()[f];
+    const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
+    const int m = int(std::clamp(std::ceil(4 * diam / best->cell()), 1.0, 16.0));
+    for(int i = 0; i <= m; ++i)
+      for(int j = 0; i + j <= m; ++j)
+        sizes.push_back(best->size((double(m - i - j) * P[t[0]] + double(i) * P[t[1]] + double(j) * P[t[2]]) / double(m)));
+    first.push_back(sizes.size());
+  }
   auto scaled_area_of = [&](const Feature_size_field& field) {
     double sum_area = unreached_area;
-    for(std::size_t f : reached) {
-      const auto& t = surface.faces()[f];
-      const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
-      const int m = int(std::clamp(std::ceil(4 * diam / field.cell()), 1.0, 16.0));
+    for(std::size_t k = 0; k < reached.size(); ++k) {
       double sum = 0;
-      int count = 0;
-      for(int i = 0; i <= m; ++i)
-        for(int j = 0; i + j <= m; ++j) {
-          const double s = field.scale((double(m - i - j) * P[t[0]] + double(i) * P[t[1]] + double(j) * P[t[2]]) / double(m));
-          sum += s * s;
-          ++count;
-        }
-      sum_area += face_area[f] * sum / count;
+      for(std::size_t q = first[k]; q < first[k + 1]; ++q) {
+        const double s = field.scale_at_size(sizes[q]);
+        sum += s * s;
+      }
+      sum_area += face_area[reached[k]] * sum / double(first[k + 1] - first[k]);
     }
     return sum_area;
   };
