@@ -40,12 +40,22 @@ inline Parametric_domain choose_domain(const Input_surface& surface, Parametric_
                                 : Parametric_domain::HYPERBOLIC;
 }
 
+// how much of the input's features a run kept: its creases (2), its corners only (1), neither (0)
+inline int features_kept_rank(Crease_run run)
+{
+  return run == Crease_run::FEATURES_DROPPED ? 0 : run == Crease_run::NOT_FOLLOWED ? 1 : 2;
+}
+
 // The automatic choice on a closed surface, or one whose holes are closed by patches (issue 16, item 5):
 // the uniformization domain `Domain` (the sphere, the hyperbolic disk); if it fails to converge (a conformal factor that double
 // precision cannot represent, sites too close to tell apart, an output that does not close), the cone
 // domain, whose area distortion is bounded by construction. The reason is in
 // Remeshing_result::domain_choice. If the cone run fails too, Convergence_failure with the first failure's
-// message (and residual) followed by the cone run's.
+// message (and residual) followed by the cone run's. If `Domain` remeshes but only without the creases
+// (its runs with crease sites failed: CGAL's cactus at 4000 vertices through the sphere, whose crease
+// sites on the arms make triangles too small on the sphere for double precision), the cone domain is run
+// too, and its output stands if it keeps more of the features (the creases, or at least the corners);
+// otherwise the first output stands and the cone run's time is counted as discarded.
 template <typename Domain, typename AnisotropicMetric, typename NamedParameters>
 Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                                                const NamedParameters& np)
@@ -54,7 +64,26 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
   double residual = 0;
   const auto start = std::chrono::steady_clock::now();
   try {
-    return remesh_in_domain<Domain>(surface, metric, result, np);
+    Remeshed_surface out = remesh_in_domain<Domain>(surface, metric, result, np);
+    if(features_kept_rank(result.crease_run) == 2) return out;
+    const auto cone_start = std::chrono::steady_clock::now();
+    const double first_seconds = std::chrono::duration<double>(cone_start - start).count();
+    try {
+      Remeshing_result cone_result;
+      Remeshed_surface cone_out = remesh_in_domain<Cone_domain>(surface, metric, cone_result, np);
+      if(features_kept_rank(cone_result.crease_run) > features_kept_rank(result.crease_run)) {
+        cone_result.discarded_seconds += first_seconds;
+        cone_result.domain_choice = std::string("cones, because the ") + domain_name(Domain::kind) + " kept " +
+                                    (result.crease_run == Crease_run::NOT_FOLLOWED ? "the corners but not the creases: " + result.creases_not_followed
+                                                                                  : "no feature: " + result.corners_not_kept);
+        result = std::move(cone_result);
+        return cone_out;
+      }
+    } catch(const Remeshing_failure&) {
+      // the cone domain does no better: the first output stands
+    }
+    result.discarded_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - cone_start).count();
+    return out;
   } catch(const Convergence_failure& e) {
     reason = e.what();
     residual = e.residual();
@@ -106,7 +135,10 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
  *   `Cone_domain_traits`; issue 16): a flat metric with cone singularities whose area distortion is at
  *   most `e^4`, holes closed by patches as above (a disk is refused there); the output has the input's
  *   genus and loops, and `Remeshing_result::domain_choice` says why cones were chosen. If the cone run
- *   fails too, `Convergence_failure` gives both reasons, the first domain's first.
+ *   fails too, `Convergence_failure` gives both reasons, the first domain's first. Likewise, when the
+ *   sphere or the hyperbolic disk remeshes only without following the creases (`Crease_run::NOT_FOLLOWED`
+ *   or `FEATURES_DROPPED`: its runs with crease sites failed), the cone domain runs too and its output
+ *   stands if it keeps more of the features (`domain_choice` says so); else the first output stands.
  *
  * The output is checked before it is returned: a consistently oriented, connected 2-manifold with the
  * input's genus and boundary count, no triangle inverted against the input's normals; every vertex lies
