@@ -144,26 +144,16 @@ inline std::vector<Feature_polyline> feature_polylines(const Input_surface& surf
                                                        const std::vector<Eigen::Matrix3d>& Q, double h)
 {
   std::vector<Feature_polyline> out;
-  // the crease components (curves joined at their ends) shorter than h in the metric, which the
-  // remeshing leaves out (without_short_crease_components()): not measured either
+  // the crease components shorter than h in the metric, which the remeshing leaves out
+  // (without_short_crease_components()): not measured either
   const auto& P = surface.points();
-  std::vector<std::size_t> parent(g.curves.size());
-  for(std::size_t c = 0; c < parent.size(); ++c) parent[c] = c;
-  auto root = [&](std::size_t c) {
-    while(parent[c] != c) c = parent[c] = parent[parent[c]];
-    return c;
-  };
-  std::unordered_map<std::size_t, std::size_t> curve_at;  // an end vertex -> a curve ending there
-  for(std::size_t c = 0; c < g.curves.size(); ++c)
-    for(std::size_t e : {g.curves[c].vertices.front(), g.curves[c].vertices.back()}) {
-      const auto it = curve_at.emplace(e, c).first;
-      parent[root(c)] = root(it->second);
+  Crease_components components(P.size(), g, {}, {});
+  std::vector<double> component_length(P.size(), 0.0);
+  for(const Feature_curve& c : g.curves)
+    for(std::size_t i = 0; i + 1 < c.vertices.size(); ++i) {
+      const std::size_t a = c.vertices[i], b = c.vertices[i + 1];
+      component_length[components.root(a)] += metric_segment_length(P[a], P[b], Q[a], Q[b]);
     }
-  std::vector<double> component_length(g.curves.size(), 0.0);
-  for(std::size_t c = 0; c < g.curves.size(); ++c) {
-    const auto& v = g.curves[c].vertices;
-    for(std::size_t i = 0; i + 1 < v.size(); ++i) component_length[root(c)] += metric_segment_length(P[v[i]], P[v[i + 1]], Q[v[i]], Q[v[i + 1]]);
-  }
   auto add = [&](std::vector<std::size_t> v, bool closed) {
     Feature_polyline l;
     if(closed && v.front() != v.back()) v.push_back(v.front());
@@ -174,8 +164,8 @@ inline std::vector<Feature_polyline> feature_polylines(const Input_surface& surf
     for(std::size_t i = 0; i < l.v.size(); ++i) l.at.emplace(l.v[i], l.arc[i]);
     if(l.v.size() >= 2) out.push_back(std::move(l));
   };
-  for(std::size_t c = 0; c < g.curves.size(); ++c)
-    if(!(component_length[root(c)] < h)) add(g.curves[c].vertices, g.curves[c].closed);
+  for(const Feature_curve& c : g.curves)
+    if(!(component_length[components.root(c.vertices.front())] < h)) add(c.vertices, c.closed);
   return out;
 }
 
@@ -380,8 +370,12 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
   std::vector<Feature_size_field::Source> sources;
   for(const auto& x : narrow) sources.push_back(x.second);
   auto best = std::make_shared<Feature_size_field>(std::move(sources), largest_h, grading, cap);
+  // the faces the field reaches, with the graded sizes at their quadrature points, once: the fixed point
+  // below only changes h_s (`first[k]` .. `first[k + 1]`: the points of face reached[k])
   std::vector<std::size_t> reached;
   double unreached_area = 0;
+  std::vector<double> sizes;
+  std::vector<std::size_t> first(1, 0);
   best->set_scaled_edge_length(largest_h);
   for(std::size_t f = 0; f < face_area.size(); ++f) {
     const auto& t = surface.faces()[f];
@@ -389,18 +383,11 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
     const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
     bool near = diam > 0.25 * best->cell();
     for(const Eigen::Vector3d& x : {P[t[0]], P[t[1]], P[t[2]], c}) near = near || best->reaches(x);
-    if(near)
-      reached.push_back(f);
-    else
+    if(!near) {
       unreached_area += face_area[f];
-  }
-  // the graded sizes at the quadrature points of the reached faces, once: the fixed point below only
-  // changes h_s (`first[k]` .. `first[k + 1]`: the points of face reached[k])
-  std::vector<double> sizes;
-  std::vector<std::size_t> first(1, 0);
-  for(std::size_t f : reached) {
-    const auto& t = surface.faces()[f];
-    const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
+      continue;
+    }
+    reached.push_back(f);
     const int m = int(std::clamp(std::ceil(4 * diam / best->cell()), 1.0, 16.0));
     for(int i = 0; i <= m; ++i)
       for(int j = 0; i + j <= m; ++j)

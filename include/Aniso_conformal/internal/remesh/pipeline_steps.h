@@ -266,18 +266,17 @@ bool has_angle_below_30_degrees(const AnisotropicMetric& metric, const Remeshed_
 // Stage 6 of 7, before the quality: the surface optimisation (optimize_surface_mesh()) when `mode` asks for
 // it, on every output or only on one with inverted triangles, to repair them, or with a triangle below
 // 30 degrees in the metric (CGAL's bear at 2000 vertices: theta_min 17.1 -> 30.4, G_avg 0.878 -> 0.895;
-// its max-min angle pass, surface_optimizer.h), or with creases followed
-// (`out.kept_edges`): a free site of the CVT can settle on a crease between two crease sites, and its
+// its max-min angle pass, surface_optimizer.h). An output that follows creases gets ALWAYS from
+// remesh_in_domain(): a free site of the CVT can settle on a crease between two crease sites, and its
 // vertex then makes a flat triangle with their edge (CGAL's fandisk at 2000: theta_min 5.8 degrees, 19.3
-// after the optimisation, which moves it off). remesh_in_domain() passes ALWAYS for REPAIR when creases
-// are followed, so that last condition serves callers of this step that do not.
+// after the optimisation, which moves it off).
 template <typename AnisotropicMetric, typename Visitor>
 void optimize_output(const Input_surface& surface, const AnisotropicMetric& metric, Remeshed_surface& out,
                      Surface_optimization mode, Visitor& vis, Remeshing_result& result, unsigned threads = 0)
 {
   Stage_timer t(vis, Stage::SURFACE_OPTIMIZATION);
   if(mode == Surface_optimization::ALWAYS ||
-     (mode == Surface_optimization::REPAIR && (!out.kept_edges.empty() || count_inverted_triangles(surface, out, threads) > 0 || has_angle_below_30_degrees(metric, out, threads))))
+     (mode == Surface_optimization::REPAIR && (count_inverted_triangles(surface, out, threads) > 0 || has_angle_below_30_degrees(metric, out, threads))))
     result.surface_optimization = optimize_surface_mesh(surface, metric, out, defaults::surface_optimization_rounds, vis,
                                                         mode == Surface_optimization::ALWAYS);
   result.seconds[int(Stage::SURFACE_OPTIMIZATION)] = t.stop(vis);
