@@ -1245,8 +1245,9 @@ BOOST_AUTO_TEST_CASE(two_creases_closer_than_an_output_edge_are_both_kept_with_t
   BOOST_TEST(off.feature_sizing.narrow_points == 0u);  // not even measured
   BOOST_TEST(off.features.covered_share < 0.75);
   AC::Remeshing_result r;
-  const AC::Remeshed_surface out =
-    AC::remesh_in_domain<AC::Spherical_domain>(coin, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n));
+  AC::internal::Feature_sizing_once once;  // as remesh_in_domain() does
+  const AC::Remeshed_surface out = AC::internal::remesh_in_domain_with_sizing<AC::Spherical_domain>(
+      coin, AC::Uniform_metric(), r, AC::parameters::number_of_vertices(n), once);
   const AC::Feature_sizing_report& s = r.feature_sizing;
   BOOST_TEST_MESSAGE("coin with the sizing: " << 100 * r.features.covered_share << " % covered, G_avg " << r.quality.G_avg
                                               << ", theta_min " << r.quality.theta_min << "; gap " << s.gap_min << " h, scale up to "
@@ -1266,6 +1267,19 @@ BOOST_AUTO_TEST_CASE(two_creases_closer_than_an_output_edge_are_both_kept_with_t
   const nlohmann::json j = AC::IO::report_json(r);
   BOOST_TEST(j.at("feature_sizing").at("applied").get<bool>());
   BOOST_TEST(j.at("feature_sizing").at("narrow_points").get<std::size_t>() == s.narrow_points);
+  // a second run with the same sizing (as the automatic choice's cone run after the sphere's) reuses it:
+  // the same field, not computed again, its time counted in the metric stage, and the same output
+  BOOST_TEST_REQUIRE(once.sizing.has_value());
+  const AC::internal::Feature_size_field* field = once.sizing->field.get();
+  const double seconds = once.seconds;
+  AC::Remeshing_result r2;
+  const AC::Remeshed_surface out2 = AC::internal::remesh_in_domain_with_sizing<AC::Spherical_domain>(
+      coin, AC::Uniform_metric(), r2, AC::parameters::number_of_vertices(n), once);
+  BOOST_TEST(once.sizing->field.get() == field);
+  BOOST_TEST(once.seconds == seconds);
+  BOOST_TEST(r2.seconds[int(AC::Stage::METRIC)] >= seconds);
+  BOOST_TEST(r2.feature_sizing.narrow_points == s.narrow_points);
+  BOOST_TEST((out2.points == out.points));
 }
 
 BOOST_AUTO_TEST_CASE(feature_sizing_leaves_alone_corners_wide_gaps_and_what_it_cannot_afford)

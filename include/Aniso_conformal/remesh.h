@@ -62,17 +62,18 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
 {
   std::string reason;
   double residual = 0;
+  Feature_sizing_once sizing;  // both domains' runs share it; the one that stands counts its time
   const auto start = std::chrono::steady_clock::now();
   try {
-    Remeshed_surface out = remesh_in_domain<Domain>(surface, metric, result, np);
+    Remeshed_surface out = remesh_in_domain_with_sizing<Domain>(surface, metric, result, np, sizing);
     if(features_kept_rank(result.crease_run) == 2) return out;
     const auto cone_start = std::chrono::steady_clock::now();
     const double first_seconds = std::chrono::duration<double>(cone_start - start).count();
     try {
       Remeshing_result cone_result;
-      Remeshed_surface cone_out = remesh_in_domain<Cone_domain>(surface, metric, cone_result, np);
+      Remeshed_surface cone_out = remesh_in_domain_with_sizing<Cone_domain>(surface, metric, cone_result, np, sizing);
       if(features_kept_rank(cone_result.crease_run) > features_kept_rank(result.crease_run)) {
-        cone_result.discarded_seconds += first_seconds;
+        cone_result.discarded_seconds += first_seconds - sizing.seconds;
         cone_result.domain_choice = std::string("cones, because the ") + domain_name(Domain::kind) + " kept " +
                                     (result.crease_run == Crease_run::NOT_FOLLOWED ? "the corners but not the creases: " + result.creases_not_followed
                                                                                   : "no feature: " + result.corners_not_kept);
@@ -88,10 +89,11 @@ Remeshed_surface remesh_with_cones_if_it_fails(const Input_surface& surface, con
     reason = e.what();
     residual = e.residual();
   }
-  const double failed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // the sizing's time, if the failed run measured it, counts in the cone run's metric stage
+  const double failed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - sizing.seconds;
   result = Remeshing_result();
   try {
-    Remeshed_surface out = remesh_in_domain<Cone_domain>(surface, metric, result, np);
+    Remeshed_surface out = remesh_in_domain_with_sizing<Cone_domain>(surface, metric, result, np, sizing);
     result.discarded_seconds += failed_seconds;  // after the cone run, which starts from a fresh result
     result.domain_choice = std::string("cones, because the ") + domain_name(Domain::kind) + " failed: " + reason;
     return out;

@@ -513,6 +513,46 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   return stood(std::move(*out), Crease_run::FEATURES_DROPPED);
 }
 
+// The feature sizing of one input, metric and options (features/feature_size.h), computed at most once
+// for the runs of several domains (the automatic choice's fallback to cones: CGAL's cheese, 979 crease
+// curves, spends 0.6 s on it)
+struct Feature_sizing_once {
+  std::optional<Feature_sizing> sizing;
+  double seconds = 0;  // what computing it took
+};
+
+// remesh_in_domain(), with the feature sizing taken from `once` (computed there by the first call); the
+// run that computes it counts its time in the metric's stage, a later run that reuses it too (the caller
+// takes it out of the time it reports as thrown away)
+template <typename Domain, typename AnisotropicMetric, typename NamedParameters>
+Remeshed_surface remesh_in_domain_with_sizing(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
+                                              const NamedParameters& np, Feature_sizing_once& once)
+{
+  typename Visitor_reference<NamedParameters>::type visitor = get_visitor(np);
+  Visitor_handle handle(visitor);
+  const Remeshing_options options = Remeshing_options::from(np);
+  const auto run = [&](const auto& m) { return run_pipeline<Domain>(surface, m, result, options, handle); };
+  if(!options.feature_sizing) return run_with_stretch_bound(surface, metric, result, options, run);
+  // feature curves close together: the metric scaled up there (features/feature_size.h)
+  if(!once.sizing) {
+    const auto start = std::chrono::steady_clock::now();
+    once.sizing = feature_sizing(surface, metric, options);
+    once.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  const Feature_sizing& sizing = *once.sizing;
+  Remeshed_surface out;
+  if(const auto field = sizing.field) {
+    const Adjusted_metric scaled(
+        surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, {},
+        [field](const Eigen::Vector3d& x) { return field->scale(x); });
+    out = run_with_stretch_bound(surface, scaled, result, options, run);
+  } else
+    out = run_with_stretch_bound(surface, metric, result, options, run);
+  result.feature_sizing = sizing.report;
+  result.seconds[int(Stage::METRIC)] += once.seconds;  // the gaps measured: counted as the metric's
+  return out;
+}
+
 } // namespace internal
 
 /*!
@@ -548,26 +588,8 @@ template <typename Domain, typename AnisotropicMetric, typename NamedParameters 
 Remeshed_surface remesh_in_domain(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                                   const NamedParameters& np = parameters::default_values())
 {
-  typename internal::Visitor_reference<NamedParameters>::type visitor = internal::get_visitor(np);
-  internal::Visitor_handle handle(visitor);
-  const internal::Remeshing_options options = internal::Remeshing_options::from(np);
-  const auto run = [&](const auto& m) { return internal::run_pipeline<Domain>(surface, m, result, options, handle); };
-  if(!options.feature_sizing) return internal::run_with_stretch_bound(surface, metric, result, options, run);
-  // feature curves close together: the metric scaled up there (features/feature_size.h)
-  const auto start = std::chrono::steady_clock::now();
-  const internal::Feature_sizing sizing = internal::feature_sizing(surface, metric, options);
-  const double sizing_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  Remeshed_surface out;
-  if(const auto field = sizing.field) {
-    const internal::Adjusted_metric scaled(
-        surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, {},
-        [field](const Eigen::Vector3d& x) { return field->scale(x); });
-    out = internal::run_with_stretch_bound(surface, scaled, result, options, run);
-  } else
-    out = internal::run_with_stretch_bound(surface, metric, result, options, run);
-  result.feature_sizing = sizing.report;
-  result.seconds[int(Stage::METRIC)] += sizing_seconds;  // the gaps measured: counted as the metric's
-  return out;
+  internal::Feature_sizing_once sizing;
+  return internal::remesh_in_domain_with_sizing<Domain>(surface, metric, result, np, sizing);
 }
 
 /*!
