@@ -121,30 +121,6 @@ Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMet
   return start;
 }
 
-// `true` if the holes' patches need a fixed site at each apex: on the sphere when the patches cover half of
-// it or more (their chordal triangles' area against all of them), as the sites of the rest could then lie
-// in one hemisphere, where their Delaunay triangulation does not cover the sphere; never in the other
-// domains (see closed_domain_dual())
-template <typename Domain>
-bool patches_need_apex_sites(const Intrinsic_triangulation& itri, const typename Domain::Embedding& emb)
-{
-  if constexpr(Domain::kind == Parametric_domain::SPHERE) {
-    double patch = 0, all = 0;
-    for(std::size_t f = 0; f < itri.number_of_faces(); ++f) {
-      const auto& c = itri.face_vertices(f);
-      const Eigen::Vector3d &a = emb.position[std::size_t(c[0])], &b = emb.position[std::size_t(c[1])], &d = emb.position[std::size_t(c[2])];
-      const double area = 0.5 * (b - a).cross(d - a).norm();
-      all += area;
-      if(itri.is_patch_face(f)) patch += area;
-    }
-    return !(patch < 0.5 * all);
-  } else {
-    (void)itri;
-    (void)emb;
-    return false;
-  }
-}
-
 // In a closed domain, the sites (the input's corners first, fixed; the crease sites with `creases`; with
 // `patches` the loops' sites and, on the sphere when the patches cover half of it or more, one more fixed
 // site at a patch's apex (removed from the output), at each apex that sees every edge of its loop's chain

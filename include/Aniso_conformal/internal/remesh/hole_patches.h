@@ -14,6 +14,7 @@
 #include <Aniso_conformal/internal/features/edge_recovery_by_flips.h>
 #include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
 #include <Aniso_conformal/internal/tensor.h>
+#include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/refine_background.h>
 
 #include <CGAL/Eigen_solver_traits.h>
@@ -346,6 +347,30 @@ inline std::size_t make_seams_delaunay(Intrinsic_triangulation& itri, const Inpu
     }
   }
   return splits;
+}
+
+// `true` if the holes' patches need a fixed site at each apex: on the sphere when the patches cover half of
+// it or more (their chordal triangles' area against all of them), as the sites of the rest could then lie
+// in one hemisphere, where their Delaunay triangulation does not cover the sphere; never in the other
+// domains (see closed_domain_dual())
+template <typename Domain>
+bool patches_need_apex_sites(const Intrinsic_triangulation& itri, const typename Domain::Embedding& emb)
+{
+  if constexpr(Domain::kind == Parametric_domain::SPHERE) {
+    double patch = 0, all = 0;
+    for(std::size_t f = 0; f < itri.number_of_faces(); ++f) {
+      const auto& c = itri.face_vertices(f);
+      const Eigen::Vector3d &a = emb.position[std::size_t(c[0])], &b = emb.position[std::size_t(c[1])], &d = emb.position[std::size_t(c[2])];
+      const double area = 0.5 * (b - a).cross(d - a).norm();
+      all += area;
+      if(itri.is_patch_face(f)) patch += area;
+    }
+    return !(patch < 0.5 * all);
+  } else {
+    (void)itri;
+    (void)emb;
+    return false;
+  }
 }
 
 } // namespace internal
