@@ -126,6 +126,10 @@ BOOST_AUTO_TEST_CASE(parser_reads_options_and_defaults)
   // reals are read by strtod, correctly rounded (CLI11's strtold rounds this one twice, one ulp off)
   BOOST_TEST(parse({"--image", "a.png", "--vertices", "10", "--anisotropy", "0.002877"}).anisotropy == 0.002877);
   BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--corner-angle", "0"}).corner_angle == 0.0);
+  BOOST_TEST(d.curvature_sizing == "cones");
+  BOOST_TEST(parse({"--input", "a.off", "--vertices", "10", "--curvature-sizing", "always"}).curvature_sizing == "always");
+  BOOST_TEST(parse_error({"--input", "a.off", "--vertices", "10", "--curvature-sizing", "sometimes"}).find("--curvature-sizing") !=
+             std::string::npos);
 }
 
 // the curvature metric is built from the command line: every option that concerns it reaches it (before
@@ -515,6 +519,8 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_cow_through_cones)
   BOOST_TEST(r.out.find("domain       cones, because the sphere failed") != std::string::npos);
   BOOST_TEST(r.out.find("(domain cones)") != std::string::npos);
   BOOST_TEST(r.out.find("area distortion") != std::string::npos);
+  // the cone domain's default curvature sizing refines the tips (summary and report)
+  BOOST_TEST(r.out.find("metric       curvature sizing: the surface bends with a radius down to") != std::string::npos, r.out);
   const Aniso_conformal::Input_surface out = Aniso_conformal::IO::read_triangle_mesh(mesh);
   BOOST_TEST(out.number_of_vertices() == 1500u);
   BOOST_TEST(out.genus() == 0);
@@ -523,6 +529,7 @@ BOOST_AUTO_TEST_CASE(tool_remeshes_the_cow_through_cones)
   BOOST_TEST(j.at("domain") == "cones");
   BOOST_TEST(std::string(j.at("domain_choice")).find("the sphere failed") != std::string::npos);
   BOOST_TEST(double(j.at("conformal_embedding").at("cones")) >= 4);
+  BOOST_TEST(j.at("feature_sizing").at("curved_points").get<std::size_t>() > 0u);
 
   // a surface with holes goes through cones with its holes patched: both loops kept
   const std::string annulus = std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/annulus.off";

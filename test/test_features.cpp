@@ -19,6 +19,7 @@
 #include <Aniso_conformal/IO/write_report.h>
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
+#include <Aniso_conformal/internal/features/curvature_size.h>
 #include <Aniso_conformal/internal/features/fixed_corner_sites.h>
 #include <Aniso_conformal/internal/features/ragged_creases.h>
 #include <Aniso_conformal/internal/optimize/crowded_vertices.h>
@@ -29,6 +30,7 @@
 #include <Aniso_conformal/Planar_domain.h>
 #include <Aniso_conformal/Spherical_domain.h>
 #include <Aniso_conformal/Uniform_metric.h>
+#include <Aniso_conformal/make_ellipsoid.h>
 #include <Aniso_conformal/measure_features.h>
 #include <Aniso_conformal/remesh_in_domain.h>
 
@@ -39,6 +41,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
@@ -1268,16 +1271,17 @@ BOOST_AUTO_TEST_CASE(two_creases_closer_than_an_output_edge_are_both_kept_with_t
   BOOST_TEST(j.at("feature_sizing").at("applied").get<bool>());
   BOOST_TEST(j.at("feature_sizing").at("narrow_points").get<std::size_t>() == s.narrow_points);
   // a second run with the same sizing (as the automatic choice's cone run after the sphere's) reuses it:
-  // the same field, not computed again, its time counted in the metric stage, and the same output
-  BOOST_TEST_REQUIRE(once.sizing.has_value());
-  const AC::internal::Feature_size_field* field = once.sizing->field.get();
-  const double seconds = once.seconds;
+  // the same field, not computed again (its time is the first run's), and the same output
+  BOOST_TEST_REQUIRE(once.sizing[0].has_value());
+  BOOST_TEST(!once.sizing[1].has_value());  // the sphere is not sized by curvature by default
+  const AC::internal::Feature_size_field* field = once.sizing[0]->field.get();
+  const double seconds = once.seconds[0];
+  BOOST_TEST(r.seconds[int(AC::Stage::METRIC)] >= seconds);
   AC::Remeshing_result r2;
   const AC::Remeshed_surface out2 = AC::internal::remesh_in_domain_with_sizing<AC::Spherical_domain>(
       coin, AC::Uniform_metric(), r2, AC::parameters::number_of_vertices(n), once);
-  BOOST_TEST(once.sizing->field.get() == field);
-  BOOST_TEST(once.seconds == seconds);
-  BOOST_TEST(r2.seconds[int(AC::Stage::METRIC)] >= seconds);
+  BOOST_TEST(once.sizing[0]->field.get() == field);
+  BOOST_TEST(once.seconds[0] == seconds);
   BOOST_TEST(r2.feature_sizing.narrow_points == s.narrow_points);
   BOOST_TEST((out2.points == out.points));
 }
@@ -1305,6 +1309,102 @@ BOOST_AUTO_TEST_CASE(feature_sizing_leaves_alone_corners_wide_gaps_and_what_it_c
   BOOST_TEST((a.points == b.points));
   const nlohmann::json j = AC::IO::report_json(small);
   BOOST_TEST(!j.at("feature_sizing").at("applied").get<bool>());
+}
+
+namespace {
+
+// the sphere of radius 1 (make_ellipsoid at `level`), each vertex moved along its radius by up to
+// `noise` (a deterministic pseudo-random pattern of either sign: a scan's noise at the input's own scale)
+AC::Input_surface make_noisy_sphere(int level, double noise)
+{
+  const AC::Input_surface sphere = AC::make_ellipsoid(level, 1, 1, 1);
+  std::vector<Eigen::Vector3d> points = sphere.points();
+  std::uint32_t state = 12345;
+  for(Eigen::Vector3d& p : points) {
+    state = state * 1664525u + 1013904223u;
+    p *= 1 + noise * (2 * double(state >> 8) / double(1u << 24) - 1);
+  }
+  return AC::Input_surface(points, sphere.faces());
+}
+
+// the output vertices within `r` of either end (x = +-a) of an ellipsoid along x
+std::size_t vertices_near_the_tips(const AC::Remeshed_surface& out, double a, double r)
+{
+  std::size_t k = 0;
+  for(const Eigen::Vector3d& p : out.points)
+    if((p - Eigen::Vector3d(a, 0, 0)).norm() < r || (p + Eigen::Vector3d(a, 0, 0)).norm() < r) ++k;
+  return k;
+}
+
+} // namespace
+
+BOOST_AUTO_TEST_CASE(curvature_sizes_read_a_spheres_radius_through_noise)
+{
+  // features/curvature_size.h: on the unit sphere the largest principal curvature is 1 everywhere; where
+  // an output edge h is longer than the radius (h = 2) every vertex asks for radius_to_size (1.25) times
+  // it, and where it is much shorter (h = 0.1) none asks for anything
+  const std::vector<Eigen::Matrix3d> I(AC::make_ellipsoid(4, 1, 1, 1).number_of_vertices(), Eigen::Matrix3d::Identity());
+  const AC::Feature_graph none;
+  for(double noise : {0.0, 0.005}) {
+    // the noise: at level 4 the input's edges are about 0.08 long, so +-0.005 bends them by up to 7
+    // degrees, a curvature of up to 1.5 at the input's own scale: averaged over cells of at least the
+    // input's median edge it cancels
+    const AC::Input_surface sphere = make_noisy_sphere(4, noise);
+    const AC::internal::Curvature_sizes big = AC::internal::curvature_sizes(sphere, none, I, 2.0, std::sqrt(6.0) * 2.0);
+    BOOST_TEST_MESSAGE("noise " << noise << ": " << big.points << " of " << sphere.number_of_vertices()
+                                << " vertices, smallest radius " << big.radius_min * 2.0);
+    BOOST_TEST(big.points == sphere.number_of_vertices());
+    BOOST_TEST_REQUIRE(big.size.size() == sphere.number_of_vertices());
+    BOOST_TEST((big.radius_min * 2.0 > 0.8 && big.radius_min * 2.0 <= 1.02));
+    for(double d : big.size) BOOST_TEST((d > 0.8 * 1.25 && d < 1.2 * 1.25));
+    const AC::internal::Curvature_sizes small = AC::internal::curvature_sizes(sphere, none, I, 0.1, std::sqrt(6.0) * 0.1);
+    BOOST_TEST(small.points == 0u);
+    BOOST_TEST(small.size.empty());
+  }
+  // a planar input has no curvature
+  AC::Input_surface square({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(0, 1, 0)},
+                           {{{0, 1, 2}}, {{0, 2, 3}}});
+  const std::vector<Eigen::Matrix3d> I4(4, Eigen::Matrix3d::Identity());
+  BOOST_TEST(AC::internal::curvature_sizes(square, none, I4, 10.0, 25.0).size.empty());
+}
+
+BOOST_AUTO_TEST_CASE(the_curvature_sizing_refines_the_tips_of_a_needle)
+{
+  // an ellipsoid 1 x 0.12 x 0.12 at 400 vertices: output edges of about 0.06, the tips' radius of
+  // curvature 0.0144 (b^2 / a), the middle's 0.12: with Curvature_sizing::ALWAYS on the sphere the metric
+  // is scaled up at the tips, so the output has more vertices there and follows them closer; by default
+  // (Curvature_sizing::CONES) the sphere's run is not sized by curvature
+  const AC::Input_surface needle = AC::make_ellipsoid(5, 1.0, 0.12, 0.12);
+  const std::size_t n = 400;
+  AC::Remeshing_result with, without;
+  const AC::Remeshed_surface a = AC::remesh_in_domain<AC::Spherical_domain>(
+    needle, AC::Uniform_metric(), with, AC::parameters::number_of_vertices(n).curvature_sizing(AC::Curvature_sizing::ALWAYS));
+  const AC::Remeshed_surface b =
+    AC::remesh_in_domain<AC::Spherical_domain>(needle, AC::Uniform_metric(), without, AC::parameters::number_of_vertices(n));
+  const AC::Feature_sizing_report& s = with.feature_sizing;
+  BOOST_TEST_MESSAGE("needle: " << s.curved_points << " curved points, radius down to " << s.radius_min << " h, scale up to "
+                                << s.scale_max << ", area x " << s.area_factor << "; near the tips " << vertices_near_the_tips(a, 1.0, 0.1)
+                                << " vertices (without: " << vertices_near_the_tips(b, 1.0, 0.1) << "), Hausdorff "
+                                << with.hausdorff_distance << " (without: " << without.hausdorff_distance << "), G_avg " << with.quality.G_avg
+                                << " (" << without.quality.G_avg << "), theta_min " << with.quality.theta_min << " (" << without.quality.theta_min << ")");
+  BOOST_TEST(s.applied);
+  BOOST_TEST(s.curvature_applied);
+  BOOST_TEST(s.curved_points > 0u);
+  BOOST_TEST(s.narrow_points == 0u);  // no crease
+  BOOST_TEST((s.radius_min > 0.2 && s.radius_min < 0.8));  // 0.47 measured
+  BOOST_TEST((s.scale_max > 1.2 && s.scale_max <= 3.0));    // 1.72 measured
+  BOOST_TEST((s.area_factor > 1.0 && s.area_factor <= 6.0));
+  BOOST_TEST(without.feature_sizing.curved_points == 0u);  // not even measured
+  BOOST_TEST(!without.feature_sizing.applied);
+  BOOST_TEST(a.points.size() == n);
+  BOOST_TEST(with.inverted_triangles == 0u);
+  BOOST_TEST(vertices_near_the_tips(a, 1.0, 0.1) >= vertices_near_the_tips(b, 1.0, 0.1) + 6);  // 21 and 11 measured
+  BOOST_TEST(with.hausdorff_distance < 0.8 * without.hausdorff_distance);                       // 0.0088 and 0.0128
+  BOOST_TEST(with.quality.theta_min >= 25.0);
+  BOOST_TEST(with.quality.G_avg >= 0.85);
+  const nlohmann::json j = AC::IO::report_json(with);
+  BOOST_TEST(j.at("feature_sizing").at("curvature_applied").get<bool>());
+  BOOST_TEST(j.at("feature_sizing").at("curved_points").get<std::size_t>() == s.curved_points);
 }
 
 BOOST_AUTO_TEST_SUITE_END()  // features

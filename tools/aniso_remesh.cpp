@@ -94,6 +94,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                     .feature_angle(aniso_remesh::feature_angle(o))
                     .drop_ragged_creases(!o.keep_ragged_creases)
                     .feature_sizing(!o.no_feature_sizing)
+                    .curvature_sizing(o.curvature_sizing == "off"      ? AC::Curvature_sizing::OFF
+                                      : o.curvature_sizing == "always" ? AC::Curvature_sizing::ALWAYS
+                                                                       : AC::Curvature_sizing::CONES)
                     .feature_edges(marked.edges)
                     .feature_vertices(marked.vertices)
                     .planar_boundary(o.planar_boundary == "lengths" ? AC::Planar_boundary::KEEP_LENGTHS
@@ -179,12 +182,19 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                   "that would take more than half of the output's vertices, or the gap is below 1/7.8 of an edge (more "
                   "vertices would let the output resolve it)\n",
                   fs.gap_min, fs.narrow_points);
-    if(fs.applied) {
+    if(fs.applied && fs.narrow_points > fs.gaps_left) {
       std::printf("features     sizing: crease curves run as close as %.3g output edges; the metric scaled up there (up to %.3g "
                   "times, at %zu input vertices; metric area x %.3g, the rest coarser; %zu of %zu narrow points left as they "
                   "are); --no-feature-sizing turns it off\n",
                   fs.gap_min, fs.scale_max, fs.vertices_scaled, fs.area_factor, fs.gaps_left, fs.narrow_points);
     }
+    if(fs.curved_points > 0)
+      std::printf("metric       curvature sizing: the surface bends with a radius down to %.3g output edges at %zu input vertices; %s\n",
+                  fs.radius_min, fs.curved_points,
+                  fs.curvature_applied ? "the metric scaled up there so that edges are about 1.25 times the radius, the rest coarser; "
+                                         "--curvature-sizing off turns it off"
+                                       : "not refined there: that would take more than 5/6 of the output's vertices, or the "
+                                         "run with it failed");
     if(ft.ragged_components_dropped > 0)
       std::printf("features     %zu ragged crease components left out (length %.4g): their triangles bend at other edges too "
                   "(noise or a staircase, not a sharp crease)%s\n",

@@ -55,6 +55,7 @@ struct Options {
   bool no_features = false;   // --no-features: no crease (feature angle 180)
   bool keep_ragged_creases = false;  // --keep-ragged-creases: no crease component left out as noise
   bool no_feature_sizing = false;    // --no-feature-sizing: the metric not scaled where crease curves run close
+  std::string curvature_sizing = "cones";  // --curvature-sizing: where the metric is scaled where the surface bends tighter than an edge
   std::string features_file;  // --features FILE: the user's crease edges and corners
   std::string planar_boundary = "automatic";
   std::string surface_optimization = "repair";
@@ -299,6 +300,13 @@ inline void declare_options(CLI::App& app, Options& o)
                "do not refine where two crease curves run closer than an output triangle's "
                "height (by default the metric is scaled up there so that the edges are about as long as the gap is wide, "
                "the rest a little coarser)")
+    ->group(re);
+  app.add_option("--curvature-sizing", o.curvature_sizing,
+                 "where to refine where the surface bends more tightly than an output edge can follow (a thin limb, a tip, "
+                 "a rounded rim: the metric scaled up so that the edges there are about 1.25 times the radius of curvature, "
+                 "the rest a little coarser): off | cones (in the cone domain, where the limbs are; the default) | always")
+    ->type_name("WHERE")
+    ->check(CLI::IsMember({"off", "cones", "always"}))
     ->group(re);
   app.add_option("--features", o.features_file,
                  "--input meshes: a file of features to keep whatever their angle, one per line: two vertex indices "

@@ -51,6 +51,10 @@ struct Cone_domain : internal::Closed_domain_policy_base<Cone_embedding, Cone_do
   /// triangles there (CGAL's limb models at 3000 vertices: theta_min 5 to 17 degrees, 0.2 to 0.9 % below
   /// 30 degrees; with the stage: 16 to 31 degrees, at most 0.15 %; `benchmark/cones.md`)
   static constexpr bool optimizes_on_the_surface_by_default = true;
+  /// `true`: the default curvature sizing (`Curvature_sizing::CONES`) scales the metric here, where the
+  /// limbs and tips are (CGAL's limb models at 3000 vertices: theta_min 18.6-34.1 -> 30.3-33.5, Hausdorff
+  /// distance 1.23-1.86 -> 0.63-1.25 % of the diagonal; `benchmark/cones.md`, "Thin parts and tips")
+  static constexpr bool sizes_by_curvature_by_default = true;
   /// the topologies it takes, in words
   static const char* topology() { return "closed surfaces of any genus, and surfaces with several boundary loops or a boundary and a genus (holes closed by patches); not disks"; }
   /// stage 3: `cone_embedding()`

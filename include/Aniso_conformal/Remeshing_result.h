@@ -55,7 +55,10 @@ struct Stretch_limit_report {
  * away from it by at most a factor 1.2 per output edge (Borouchaki, Hecht and Frey 1998, isotropic
  * form), at most 6; the number of output vertices stays the one asked for, so the rest is a little coarser.
  * `Remeshing_result::quality` is measured in the scaled metric (the same angles and `G` where the scale
- * is constant over a triangle: the scale is isotropic).
+ * is constant over a triangle: the scale is isotropic). The curvature sizing (`curvature_sizing`, by
+ * default in the cone domain) shares the field: where the largest principal curvature's radius is shorter than an output edge,
+ * edges of about 1.25 times the radius, graded by 1.8 per edge, at most 3 times shorter
+ * (`internal/features/curvature_size.h`; manual, "Thin parts and tips").
  */
 struct Feature_sizing_report {
   bool applied = false;             ///< `true` if the metric was scaled (the other figures are filled when `narrow_points > 0`)
@@ -65,6 +68,11 @@ struct Feature_sizing_report {
   double scale_max = 1;             ///< the largest scale (at most 6)
   double area_factor = 1;           ///< the metric's area after the scaling over before (at most 2): the unscaled parts' edges grow by its square root
   std::size_t gaps_left = 0;        ///< narrow points left as they are: a gap below 1 / 7.8 output edges, or past the area budget (narrowest first)
+  /// input vertices where the surface bends more tightly than an output edge (`curvature_sizing`): the
+  /// largest principal curvature's radius, in the metric, shorter than the refined parts' largest edge
+  std::size_t curved_points = 0;
+  double radius_min = 0;            ///< the smallest such radius over the output edge length of the unscaled metric (0: none measured)
+  bool curvature_applied = false;   ///< `true` if the field holds the curvature's sizes (within the area budget)
 };
 
 /*!

@@ -489,17 +489,12 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   return stood(std::move(*out), Crease_run::FEATURES_DROPPED);
 }
 
-// The feature sizing of one input, metric and options (features/feature_size.h), computed at most once
-// for the runs of several domains (the automatic choice's fallback to cones: CGAL's cheese, 979 crease
-// curves, spends 0.6 s on it)
-struct Feature_sizing_once {
-  std::optional<Feature_sizing> sizing;
-  double seconds = 0;  // what computing it took
-};
-
-// remesh_in_domain(), with the feature sizing taken from `once` (computed there by the first call); the
-// run that computes it counts its time in the metric's stage, a later run that reuses it too (the caller
-// takes it out of the time it reports as thrown away)
+// remesh_in_domain(), with the feature sizing taken from `once` (computed there by the first call that
+// needs it); a call counts in the metric's stage the time of the sizings it computed, not of those it
+// reused (the first call's time, thrown away or not, holds them). With the curvature's sizes (Curvature_sizing:
+// ALWAYS, or CONES in a domain that sizes by curvature by default), a run that fails is run again with
+// the crease gaps' sizes alone: the curvature sizing refines, it must not cost an output (CGAL's femur
+// with the curvature metric at 2000 vertices: its cone run failed with them)
 template <typename Domain, typename AnisotropicMetric, typename NamedParameters>
 Remeshed_surface remesh_in_domain_with_sizing(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                                               const NamedParameters& np, Feature_sizing_once& once)
@@ -508,24 +503,36 @@ Remeshed_surface remesh_in_domain_with_sizing(const Input_surface& surface, cons
   Visitor_handle handle(visitor);
   const Remeshing_options options = Remeshing_options::from(np);
   const auto run = [&](const auto& m) { return run_pipeline<Domain>(surface, m, result, options, handle); };
-  if(!options.feature_sizing) return run_with_stretch_bound(surface, metric, result, options, run);
-  // feature curves close together: the metric scaled up there (features/feature_size.h)
-  if(!once.sizing) {
-    const auto start = std::chrono::steady_clock::now();
-    once.sizing = feature_sizing(surface, metric, options);
-    once.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-  const Feature_sizing& sizing = *once.sizing;
+  const bool curvature = options.curvature_sizing == Curvature_sizing::ALWAYS ||
+                         (options.curvature_sizing == Curvature_sizing::CONES && Domain::sizes_by_curvature_by_default);
+  if(!options.feature_sizing && !curvature) return run_with_stretch_bound(surface, metric, result, options, run);
+  // feature curves close together, thin parts and tips: the metric scaled up there (features/feature_size.h)
+  double spent = 0;  // the sizings computed by this call
+  const auto run_with = [&](bool with_curvature) {
+    const Feature_sizing& sizing =
+        once.get(with_curvature, [&] { return feature_sizing(surface, metric, options, with_curvature); }, spent);
+    Remeshed_surface out;
+    if(const auto field = sizing.field) {
+      const Adjusted_metric scaled(
+          surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, {},
+          [field](const Surface_point& x) { return field->scale(x); });
+      out = run_with_stretch_bound(surface, scaled, result, options, run);
+    } else
+      out = run_with_stretch_bound(surface, metric, result, options, run);
+    result.feature_sizing = sizing.report;
+    return out;
+  };
   Remeshed_surface out;
-  if(const auto field = sizing.field) {
-    const Adjusted_metric scaled(
-        surface, [&metric](const Surface_point& p) { return Eigen::Matrix3d(metric.tensor(p)); }, {},
-        [field](const Eigen::Vector3d& x) { return field->scale(x); });
-    out = run_with_stretch_bound(surface, scaled, result, options, run);
-  } else
-    out = run_with_stretch_bound(surface, metric, result, options, run);
-  result.feature_sizing = sizing.report;
-  result.seconds[int(Stage::METRIC)] += once.seconds;  // the gaps measured: counted as the metric's
+  try {
+    out = run_with(curvature);
+  } catch(const Remeshing_failure&) {
+    if(!curvature || !once.sizing[true] || !once.sizing[true]->report.curvature_applied) throw;
+    out = run_with(false);
+    const Feature_sizing_report& tried = once.sizing[true]->report;
+    result.feature_sizing.curved_points = tried.curved_points;  // measured, not applied: that run failed
+    result.feature_sizing.radius_min = tried.radius_min;
+  }
+  result.seconds[int(Stage::METRIC)] += spent;  // the gaps and curvatures measured: counted as the metric's
   return out;
 }
 

@@ -106,7 +106,8 @@ inline void add_metric_adjustments(const Remeshing_result& r, nlohmann::json& j)
                             {"theta_min", report_number(l.given_theta_min)},
                             {"percent_below_30", report_number(l.given_percent_below_30)}}}};
   }
-  if(r.feature_sizing.narrow_points > 0) {  // feature curves close together: the metric scaled up there (Feature_sizing_report)
+  // feature curves close together, or the surface bending more tightly than an edge: the metric scaled up there (Feature_sizing_report)
+  if(r.feature_sizing.narrow_points > 0 || r.feature_sizing.curved_points > 0) {
     const Feature_sizing_report& s = r.feature_sizing;
     j["feature_sizing"] = {{"applied", s.applied},
                            {"narrow_points", s.narrow_points},
@@ -114,14 +115,17 @@ inline void add_metric_adjustments(const Remeshing_result& r, nlohmann::json& j)
                            {"gap_min", report_number(s.gap_min)},
                            {"scale_max", report_number(s.scale_max)},
                            {"area_factor", report_number(s.area_factor)},
-                           {"gaps_left", s.gaps_left}};
+                           {"gaps_left", s.gaps_left},
+                           {"curved_points", s.curved_points},
+                           {"radius_min", report_number(s.radius_min)},
+                           {"curvature_applied", s.curvature_applied}};
   }
 }
 } // namespace internal
 
 /*!
  * \ingroup PkgAnisoConformalIO
- * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did; `reseeded`, why a first run at a boundary loop failed, when the output is that of the run with the next seed; `stretch_limit`, when the run in the metric as given failed and the output is that of the run with the stretch bounded (`Stretch_limit_report`: `vertices_limited`, `stretch_asked_max`, `bound_min`, `bound_median`, `reason`, and `given_metric_quality`, the output's `G_min`, `G_avg`, `theta_min`, `percent_below_30` in the metric as given)); `feature_sizing`, when two crease curves run closer than an output triangle's height (`Feature_sizing_report`: `applied`, `narrow_points`, `vertices_scaled`, `gap_min`, `scale_max`, `area_factor`, `gaps_left`); `input` and `background` (vertices, faces); `output`
+ * the report of `r` as a JSON object: `domain` (and `domain_choice`, why the automatic choice went to cones, when it did; `reseeded`, why a first run at a boundary loop failed, when the output is that of the run with the next seed; `stretch_limit`, when the run in the metric as given failed and the output is that of the run with the stretch bounded (`Stretch_limit_report`: `vertices_limited`, `stretch_asked_max`, `bound_min`, `bound_median`, `reason`, and `given_metric_quality`, the output's `G_min`, `G_avg`, `theta_min`, `percent_below_30` in the metric as given)); `feature_sizing`, when two crease curves run closer than an output triangle's height or the surface bends more tightly than an output edge (`Feature_sizing_report`: `applied`, `narrow_points`, `vertices_scaled`, `gap_min`, `scale_max`, `area_factor`, `gaps_left`, `curved_points`, `radius_min`, `curvature_applied`); `input` and `background` (vertices, faces); `output`
  * (vertices, triangles, boundary vertices, corners, inverted triangles, Hausdorff distance absolute and
  * relative to the bounding-box diagonal); `quality` in the metric (G, angles in degrees, the angle
  * histogram; `metric_edge_length`: the mean edge length in the metric and the standard deviation, min and

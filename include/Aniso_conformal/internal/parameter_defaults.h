@@ -27,6 +27,7 @@ constexpr double corner_angle = 30.0;                // degrees
 constexpr double feature_angle = 60.0;               // degrees between face normals; 180: no crease
 constexpr bool drop_ragged_creases = true;          // ragged crease components left out (ragged_creases.h)
 constexpr bool feature_sizing = true;               // the metric scaled up where crease curves run close (features/feature_size.h)
+constexpr Curvature_sizing curvature_sizing = Curvature_sizing::CONES;  // the metric scaled up where the surface bends tighter than an edge (features/curvature_size.h)
 constexpr unsigned number_of_threads = 0;           // 0: all cores
 constexpr unsigned max_adjustment_rounds = 50;      // stage 2
 constexpr unsigned max_flips_per_edge = 50;         // every intrinsic flip pass (stages 2 and 3)
@@ -59,6 +60,7 @@ ANISO_CONFORMAL_PARAMETER_GETTER(corner_angle, internal_np::corner_angle, double
 ANISO_CONFORMAL_PARAMETER_GETTER(feature_angle, internal_np::feature_angle, double)
 ANISO_CONFORMAL_PARAMETER_GETTER(drop_ragged_creases, internal_np::drop_ragged_creases, bool)
 ANISO_CONFORMAL_PARAMETER_GETTER(feature_sizing, internal_np::feature_sizing, bool)
+ANISO_CONFORMAL_PARAMETER_GETTER(curvature_sizing, internal_np::curvature_sizing, Curvature_sizing)
 ANISO_CONFORMAL_PARAMETER_GETTER(number_of_threads, internal_np::number_of_threads, unsigned)
 ANISO_CONFORMAL_PARAMETER_GETTER(max_adjustment_rounds, internal_np::max_adjustment_rounds, std::size_t)
 ANISO_CONFORMAL_PARAMETER_GETTER(max_flips_per_edge, internal_np::max_flips_per_edge, std::size_t)

@@ -150,7 +150,7 @@ class Adjusted_metric {
 public:
   typedef Eigen::Matrix3d Tensor;
   Adjusted_metric(const Input_surface& surface, std::function<Tensor(const Surface_point&)> given, std::vector<double> bounds,
-                  std::function<double(const Eigen::Vector3d&)> scale = {})
+                  std::function<double(const Surface_point&)> scale = {})
       : m_surface(surface), m_given(std::move(given)), m_bounds(std::move(bounds)), m_scale(std::move(scale))
   {
   }
@@ -160,7 +160,7 @@ public:
     for(int k = 0; k < 3; ++k)
       if(p.vertices[k] >= m_surface.number_of_vertices()) return M;
     if(m_scale) {
-      const double s = m_scale(p.position);
+      const double s = m_scale(p);
       M *= s * s;
     }
     if(m_bounds.empty()) return M;
@@ -179,7 +179,7 @@ private:
   const Input_surface& m_surface;
   std::function<Tensor(const Surface_point&)> m_given;
   std::vector<double> m_bounds;
-  std::function<double(const Eigen::Vector3d&)> m_scale;
+  std::function<double(const Surface_point&)> m_scale;
 };
 
 // `run(metric)`, the pipeline; if it fails with Convergence_failure for folded (inverted) output triangles

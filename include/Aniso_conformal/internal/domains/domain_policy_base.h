@@ -33,6 +33,8 @@ struct Domain_policy_base {
   // `true` if the default surface optimisation (Surface_optimization::REPAIR) runs always in this domain,
   // as Surface_optimization::ALWAYS (the cone domain, whose Voronoi cells next to cones are approximate)
   static constexpr bool optimizes_on_the_surface_by_default = false;
+  // `true` if the default curvature sizing (Curvature_sizing::CONES) scales the metric in this domain
+  static constexpr bool sizes_by_curvature_by_default = false;
   // the vertices of the background the domain needs as output vertices (fixed sites): none
   static std::vector<std::size_t> vertices_kept(const Embedding_&) { return {}; }
   // the likely reason for an inverted output triangle on a closed surface

@@ -8,6 +8,7 @@
 #include <Aniso_conformal/Input_surface.h>
 #include <Aniso_conformal/Remeshing_result.h>
 #include <Aniso_conformal/compute_metric_edge_lengths.h>
+#include <Aniso_conformal/internal/features/curvature_size.h>
 #include <Aniso_conformal/internal/features/ragged_creases.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/refine_background.h>
@@ -17,12 +18,14 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <unordered_map>
 #include <utility>
@@ -48,19 +51,6 @@
 namespace Aniso_conformal {
 namespace internal {
 
-// a uniform grid of integer cells over space
-typedef std::array<std::int64_t, 3> Grid_cell;
-struct Grid_cell_hash {
-  std::size_t operator()(const Grid_cell& k) const
-  {
-    return std::size_t(k[0] * 73856093) ^ std::size_t(k[1] * 19349663) ^ std::size_t(k[2] * 83492791);
-  }
-};
-inline Grid_cell grid_cell(const Eigen::Vector3d& p, double cell)
-{
-  return {{std::int64_t(std::floor(p.x() / cell)), std::int64_t(std::floor(p.y() / cell)), std::int64_t(std::floor(p.z() / cell))}};
-}
-
 // the smallest eigenvalue of a metric square root on the tangent plane (the second of three: the normal's
 // is 0), at least 1e-300: a Euclidean length r is at least r times it in the metric
 inline double smallest_tangent_eigenvalue(const Eigen::Matrix3d& q)
@@ -81,9 +71,10 @@ public:
     Eigen::Matrix3d Q;
     double sigma;
   };
-  // `largest_h`: the largest h_s the field will be given (the sources' reach)
-  Feature_size_field(std::vector<Source> sources, double largest_h, double grading, double cap)
-      : m_sources(std::move(sources)), m_largest_h(largest_h), m_g(grading - 1), m_cap(cap)
+  // `largest_h`: the largest h_s the field will be given (the sources' reach); `vertex_size`: the
+  // curvature's sizes at the input vertices (curvature_size.h; empty: none), interpolated in the faces
+  Feature_size_field(std::vector<Source> sources, double largest_h, double grading, double cap, std::vector<double> vertex_size = {})
+      : m_sources(std::move(sources)), m_vertex_size(std::move(vertex_size)), m_largest_h(largest_h), m_g(grading - 1), m_cap(cap)
   {
     // the Euclidean reach of each source: where sigma + g |Q (x - p)| < h, within (h - sigma) / (g lambda_min)
     std::vector<double> reach(m_sources.size());
@@ -110,17 +101,33 @@ public:
       for(std::size_t i : it->second) d = std::min(d, m_sources[i].sigma + m_g * (m_sources[i].Q * (x - m_sources[i].p)).norm());
     return d;
   }
-  double scale(const Eigen::Vector3d& x) const { return scale_at_size(size(x)); }
+  // the graded size at a point of the input: the crease gaps' (size(x)) or the curvature's, the smaller
+  // (a point of a hole's patch, its vertices past the input's: the gaps' only)
+  double size(const Surface_point& p) const
+  {
+    double d = size(p.position);
+    if(m_vertex_size.empty()) return d;
+    double c = 0;
+    for(int k = 0; k < 3; ++k) {
+      if(p.vertices[k] >= m_vertex_size.size()) return d;
+      c += p.barycentric[k] * m_vertex_size[p.vertices[k]];
+    }
+    return std::min(d, c);
+  }
+  double scale(const Surface_point& p) const { return scale_at_size(size(p)); }
   // the scale where the graded size is `d` (size() does not depend on h_s: a fixed point on h_s reads
   // the sizes it stored)
   double scale_at_size(double d) const { return std::clamp(m_scaled_h / d, 1.0, m_cap); }
   // h_s, at most largest_h
   void set_scaled_edge_length(double hs) { m_scaled_h = std::min(hs, m_largest_h); }
   bool reaches(const Eigen::Vector3d& x) const { return m_grid.count(grid_cell(x, m_cell)) > 0; }
+  // the curvature asks for a size below largest_h at input vertex v
+  bool reaches_vertex(std::size_t v) const { return v < m_vertex_size.size() && m_vertex_size[v] < m_largest_h; }
   double cell() const { return m_cell; }
 
 private:
   std::vector<Source> m_sources;
+  std::vector<double> m_vertex_size;
   double m_largest_h, m_g, m_cap, m_cell = 1, m_scaled_h = 0;
   std::unordered_map<Grid_cell, std::vector<std::size_t>, Grid_cell_hash> m_grid;
 };
@@ -331,10 +338,13 @@ inline Narrow_feature_points narrow_feature_points(const Input_surface& surface,
 // scaled metric grows with the scaled area: when the area factor would pass `area_budget` (6: at most
 // 5/6 of the output's vertices in the refined zones), no field (a thin coin at 600 vertices, its rims
 // 0.27 h apart: a factor of 12.6, and G_avg 0.930 -> 0.853 for nothing, the rims' sites still too close
-// for both to stay); `gaps_left` counts the narrow points left as they are. No field when none is held.
+// for both to stay); `gaps_left` counts the narrow points left as they are. `gaps` false: no gap measured;
+// `radius_to_size` > 0: the curvature's sizes too (curvature_size.h; 0: none).
+// The gaps and the curvature share one field (the smaller size wins) and one budget: past it, the gaps
+// alone, else the curvature alone. No field when none is held.
 inline Feature_sizing feature_size_field(const Input_surface& surface, const Feature_graph& g, const std::vector<Eigen::Matrix3d>& Q,
-                                         std::size_t n, double grading = 1.2, double cap = 6.0,
-                                         double gap_to_size = 1.3, double area_budget = 6.0)
+                                         std::size_t n, bool gaps = true, double radius_to_size = 1.25,
+                                         double grading = 1.2, double cap = 6.0, double gap_to_size = 1.3, double area_budget = 6.0)
 {
   Feature_sizing out;
   if(n == 0) return out;
@@ -352,95 +362,116 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
   }
   const double h = std::sqrt(2 * area / (std::sqrt(3.0) * double(n)));
   if(!(h > 0) || !std::isfinite(h)) return out;
-  const std::vector<Feature_polyline> lines = feature_polylines(surface, g, Q, h);
-  if(lines.empty()) return out;
-  const Narrow_feature_points found = narrow_feature_points(surface, lines, Q, h, cap, gap_to_size);
-  const auto& narrow = found.points;
-  const std::size_t too_narrow = found.too_narrow;
-  const double gap_min = found.gap_min;
-  out.report.narrow_points = narrow.size() + too_narrow;
-  if(out.report.narrow_points == 0) return out;
-  out.report.gap_min = gap_min / h;
-  out.report.gaps_left = out.report.narrow_points;
-  if(narrow.empty()) return out;
-  // the field of the gaps and its h_s (the output edge length in the scaled metric, by fixed-point steps on
-  // the scaled area: each face's mean of scale^2 over a barycentric grid of spacing at most a quarter of
-  // the field's cell, only on the faces the field reaches)
   const double largest_h = std::sqrt(area_budget) * h;
-  std::vector<Feature_size_field::Source> sources;
-  for(const auto& x : narrow) sources.push_back(x.second);
-  auto best = std::make_shared<Feature_size_field>(std::move(sources), largest_h, grading, cap);
-  // the faces the field reaches, with the graded sizes at their quadrature points, once: the fixed point
-  // below only changes h_s (`first[k]` .. `first[k + 1]`: the points of face reached[k])
-  std::vector<std::size_t> reached;
-  double unreached_area = 0;
-  std::vector<double> sizes;
-  std::vector<std::size_t> first(1, 0);
-  best->set_scaled_edge_length(largest_h);
-  for(std::size_t f = 0; f < face_area.size(); ++f) {
-    const auto& t = surface.faces()[f];
-    const Eigen::Vector3d c = (P[t[0]] + P[t[1]] + P[t[2]]) / 3;
-    const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
-    bool near = diam > 0.25 * best->cell();
-    for(const Eigen::Vector3d& x : {P[t[0]], P[t[1]], P[t[2]], c}) near = near || best->reaches(x);
-    if(!near) {
-      unreached_area += face_area[f];
-      continue;
-    }
-    reached.push_back(f);
-    const int m = int(std::clamp(std::ceil(4 * diam / best->cell()), 1.0, 16.0));
-    for(int i = 0; i <= m; ++i)
-      for(int j = 0; i + j <= m; ++j)
-        sizes.push_back(best->size((double(m - i - j) * P[t[0]] + double(i) * P[t[1]] + double(j) * P[t[2]]) / double(m)));
-    first.push_back(sizes.size());
+  // the crease gaps
+  Narrow_feature_points found;
+  if(gaps) {
+    const std::vector<Feature_polyline> lines = feature_polylines(surface, g, Q, h);
+    if(!lines.empty()) found = narrow_feature_points(surface, lines, Q, h, cap, gap_to_size);
   }
-  auto scaled_area_of = [&](const Feature_size_field& field) {
-    double sum_area = unreached_area;
-    for(std::size_t k = 0; k < reached.size(); ++k) {
-      double sum = 0;
-      for(std::size_t q = first[k]; q < first[k + 1]; ++q) {
-        const double s = field.scale_at_size(sizes[q]);
-        sum += s * s;
+  const auto& narrow = found.points;
+  out.report.narrow_points = narrow.size() + found.too_narrow;
+  if(out.report.narrow_points > 0) out.report.gap_min = found.gap_min / h;
+  out.report.gaps_left = out.report.narrow_points;
+  // the curvature (curvature_size.h)
+  Curvature_sizes curved;
+  if(radius_to_size > 0) curved = curvature_sizes(surface, g, Q, h, largest_h, radius_to_size);
+  out.report.curved_points = curved.points;
+  if(std::isfinite(curved.radius_min)) out.report.radius_min = curved.radius_min;
+  if(narrow.empty() && curved.size.empty()) return out;
+  // A field of the gaps and/or the curvature, and its h_s (the output edge length in the scaled metric, by
+  // fixed-point steps on the scaled area: each face's mean of scale^2 over a barycentric grid of spacing
+  // at most a quarter of the gaps' cell, or of half the face for the curvature's sizes, which are linear
+  // in a face; only on the faces the field reaches); its area factor (infinite past the budget)
+  auto field_of = [&](bool with_gaps, bool with_curvature) {
+    std::vector<Feature_size_field::Source> sources;
+    if(with_gaps)
+      for(const auto& x : narrow) sources.push_back(x.second);
+    auto field = std::make_shared<Feature_size_field>(std::move(sources), largest_h, grading, cap,
+                                                      with_curvature ? curved.size : std::vector<double>());
+    // the faces the field reaches, with the graded sizes at their quadrature points, once: the fixed
+    // point below only changes h_s (`first[k]` .. `first[k + 1]`: the points of face reached[k])
+    std::vector<std::size_t> reached;
+    double unreached_area = 0;
+    std::vector<double> sizes;
+    std::vector<std::size_t> first(1, 0);
+    field->set_scaled_edge_length(largest_h);
+    for(std::size_t f = 0; f < face_area.size(); ++f) {
+      const auto& t = surface.faces()[f];
+      const Eigen::Vector3d c = (P[t[0]] + P[t[1]] + P[t[2]]) / 3;
+      const double diam = std::max({(P[t[0]] - P[t[1]]).norm(), (P[t[1]] - P[t[2]]).norm(), (P[t[2]] - P[t[0]]).norm()});
+      bool near_gap = with_gaps && diam > 0.25 * field->cell();
+      for(const Eigen::Vector3d& x : {P[t[0]], P[t[1]], P[t[2]], c}) near_gap = near_gap || (with_gaps && field->reaches(x));
+      bool near = near_gap;
+      for(int k = 0; k < 3; ++k) near = near || field->reaches_vertex(t[k]);
+      if(!near) {
+        unreached_area += face_area[f];
+        continue;
       }
-      sum_area += face_area[reached[k]] * sum / double(first[k + 1] - first[k]);
+      reached.push_back(f);
+      const int m = near_gap ? int(std::clamp(std::ceil(4 * diam / field->cell()), 1.0, 16.0)) : 2;
+      Surface_point x;
+      x.vertices = {{t[0], t[1], t[2]}};
+      for(int i = 0; i <= m; ++i)
+        for(int j = 0; i + j <= m; ++j) {
+          x.barycentric = Eigen::Vector3d(double(m - i - j), double(i), double(j)) / double(m);
+          x.position = x.barycentric[0] * P[t[0]] + x.barycentric[1] * P[t[1]] + x.barycentric[2] * P[t[2]];
+          sizes.push_back(field->size(x));
+        }
+      first.push_back(sizes.size());
     }
-    return sum_area;
-  };
-  // the field's h_s; its area factor (infinite if h_s would pass largest_h)
-  auto settle = [&](Feature_size_field& field) {
     double hs = h, scaled = area;
     for(int it = 0; it < 5; ++it) {
-      field.set_scaled_edge_length(std::min(hs, largest_h));
-      scaled = scaled_area_of(field);
+      field->set_scaled_edge_length(std::min(hs, largest_h));
+      scaled = unreached_area;
+      for(std::size_t k = 0; k < reached.size(); ++k) {
+        double sum = 0;
+        for(std::size_t q = first[k]; q < first[k + 1]; ++q) {
+          const double s = field->scale_at_size(sizes[q]);
+          sum += s * s;
+        }
+        scaled += face_area[reached[k]] * sum / double(first[k + 1] - first[k]);
+      }
       hs = std::sqrt(2 * scaled / (std::sqrt(3.0) * double(n)));
     }
-    field.set_scaled_edge_length(std::min(hs, largest_h));
-    return hs > largest_h * (1 + 1e-9) ? std::numeric_limits<double>::infinity() : scaled / area;
+    field->set_scaled_edge_length(std::min(hs, largest_h));
+    const double factor = hs > largest_h * (1 + 1e-9) ? std::numeric_limits<double>::infinity() : scaled / area;
+    return std::make_pair(std::move(field), factor);
   };
   // all the gaps or none: a field of the widest gaps only leaves the narrowest, those that need it most,
   // between refined zones (CGAL's spool at 2000 vertices with 3/4 of its narrow points held: theta_min 18.6,
-  // 96.6 % of the crease length covered; with none 17.8 and 88 %; with all 25.6 and 99.6 %)
-  const double best_factor = settle(*best);
-  if(!(best_factor <= area_budget)) return out;  // no field: area_factor stays 1, every narrow point left
-  out.report.area_factor = best_factor;
-  out.report.gaps_left = too_narrow;
-  for(std::size_t v = 0; v < P.size(); ++v) {
-    const double s = best->scale(P[v]);
-    if(s > 1) ++out.report.vertices_scaled;
-    out.report.scale_max = std::max(out.report.scale_max, s);
-  }
-  for(const auto& x : narrow) out.report.scale_max = std::max(out.report.scale_max, best->scale(x.second.p));
-  if(out.report.scale_max > 1) {
-    out.field = std::move(best);
-    out.report.applied = true;
+  // 96.6 % of the crease length covered; with none 17.8 and 88 %; with all 25.6 and 99.6 %); both
+  // the gaps and the curvature, or else the gaps alone, or else the curvature alone, within the budget
+  const bool with[3][2] = {{true, true}, {true, false}, {false, true}};
+  for(const auto& w : with) {
+    if((w[0] && narrow.empty()) || (w[1] && curved.size.empty())) continue;
+    auto [best, factor] = field_of(w[0], w[1]);
+    if(!(factor <= area_budget)) continue;  // past the budget: the next choice, or no field
+    out.report.area_factor = factor;
+    if(w[0]) out.report.gaps_left = found.too_narrow;
+    out.report.curvature_applied = w[1];
+    for(std::size_t v = 0; v < P.size(); ++v) {
+      const double s = best->scale(Surface_point::at_vertex(v, P[v]));
+      if(s > 1) ++out.report.vertices_scaled;
+      out.report.scale_max = std::max(out.report.scale_max, s);
+    }
+    if(w[0])
+      for(const auto& x : narrow) out.report.scale_max = std::max(out.report.scale_max, best->scale_at_size(best->size(x.second.p)));
+    if(out.report.scale_max > 1) {
+      out.field = std::move(best);
+      out.report.applied = true;
+    }
+    break;
   }
   return out;
 }
 
 // The feature sizing of `metric` for the request: the input's feature graph as remesh_in_domain.h's
-// start_pipeline() detects it, the metric at the input vertices, the scales (none without a narrow gap).
+// start_pipeline() detects it, the metric at the input vertices, the scales of the narrow gaps (when
+// `options.feature_sizing`) and of the curvature (when `curvature`; none without either).
 template <typename AnisotropicMetric>
-Feature_sizing feature_sizing(const Input_surface& surface, const AnisotropicMetric& metric, const Remeshing_options& options)
+Feature_sizing feature_sizing(const Input_surface& surface, const AnisotropicMetric& metric, const Remeshing_options& options,
+                              bool curvature = false)
 {
   if(options.number_of_vertices < 3) return {};
   Feature_graph g = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
@@ -449,9 +480,29 @@ Feature_sizing feature_sizing(const Input_surface& surface, const AnisotropicMet
     g = without_ragged_crease_components(surface, g, options.number_of_vertices, options.feature_angle, options.corner_angle,
                                          options.feature_edges, options.feature_vertices, ragged);
   }
-  if(g.curves.empty()) return {};
-  return feature_size_field(surface, g, compute_metric_square_roots(surface, metric), options.number_of_vertices);
+  if((g.curves.empty() || !options.feature_sizing) && !curvature) return {};
+  return feature_size_field(surface, g, compute_metric_square_roots(surface, metric), options.number_of_vertices,
+                            options.feature_sizing, curvature ? 1.25 : 0.0);
 }
+
+// The feature sizing of one input, metric and options (above), computed at most once
+// for the runs of several domains (the automatic choice's fallback to cones: CGAL's cheese, 979 crease
+// curves, spends 0.6 s on it), without and with the curvature's sizes (`sizing[curvature]`)
+struct Feature_sizing_once {
+  std::optional<Feature_sizing> sizing[2];
+  double seconds[2] = {0, 0};  // what computing each took
+  // the sizing, computed by `compute` if it was not yet (its time then added to `spent`)
+  const Feature_sizing& get(bool curvature, const std::function<Feature_sizing()>& compute, double& spent)
+  {
+    if(!sizing[curvature]) {
+      const auto start = std::chrono::steady_clock::now();
+      sizing[curvature] = compute();
+      seconds[curvature] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      spent += seconds[curvature];
+    }
+    return *sizing[curvature];
+  }
+};
 
 } // namespace internal
 } // namespace Aniso_conformal

@@ -59,6 +59,7 @@ struct Remeshing_options {
   double feature_angle = defaults::feature_angle;
   bool drop_ragged_creases = defaults::drop_ragged_creases;
   bool feature_sizing = defaults::feature_sizing;
+  Curvature_sizing curvature_sizing = defaults::curvature_sizing;
   std::vector<std::array<std::size_t, 2>> feature_edges;  // the user's creases (none by default)
   std::vector<std::size_t> feature_vertices;              // the user's corners (none by default)
   unsigned number_of_threads = defaults::number_of_threads;
@@ -81,6 +82,7 @@ struct Remeshing_options {
     o.feature_angle = internal::feature_angle(np);
     o.drop_ragged_creases = internal::drop_ragged_creases(np);
     o.feature_sizing = internal::feature_sizing(np);
+    o.curvature_sizing = internal::curvature_sizing(np);
     o.feature_edges = internal::feature_edges(np);
     o.feature_vertices = internal::feature_vertices(np);
     o.number_of_threads = internal::number_of_threads(np);
