@@ -16,7 +16,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <queue>
 #include <unordered_map>
@@ -31,8 +30,8 @@
 // radius of curvature (MMG's -hausd, Frey's geometric metric; Dunyach et al. 2013, "Adaptive remeshing for
 // real-time mesh deformation", edge length from the largest principal curvature): here where the largest
 // principal curvature kappa makes r = 1 / kappa (in the metric's units) shorter than an output edge, the
-// output's edge there is asked to be about r long (a tube of radius r: 2 pi edges around it), graded away
-// with the feature sizing's grading (Borouchaki, Hecht and Frey 1998) along the input's edges.
+// output's edge there is asked to be about 1.25 r long (a tube of radius r: about five edges around it),
+// graded away along the input's edges (Borouchaki, Hecht and Frey 1998; by 1.8 per edge, see below).
 //
 // The curvature is the input's discrete mean and Gaussian curvature (the edges' dihedral angles times their
 // lengths, Cohen-Steiner and Morvan 2003; the angle defects) summed over the cells of a grid of half an
