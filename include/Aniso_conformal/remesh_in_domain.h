@@ -510,7 +510,7 @@ Remeshed_surface remesh_in_domain_with_sizing(const Input_surface& surface, cons
   double spent = 0;  // the sizings computed by this call
   const auto run_with = [&](bool with_curvature) {
     const Feature_sizing& sizing =
-        once.get(with_curvature, [&] { return feature_sizing(surface, metric, options, with_curvature); }, spent);
+        once.get(with_curvature, [&] { return feature_sizing(surface, metric, options, with_curvature, &once.measure); }, spent);
     Remeshed_surface out;
     if(const auto field = sizing.field) {
       const Adjusted_metric scaled(

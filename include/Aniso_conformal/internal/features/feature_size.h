@@ -341,34 +341,61 @@ inline Narrow_feature_points narrow_feature_points(const Input_surface& surface,
 // for both to stay); `gaps_left` counts the narrow points left as they are. `gaps` false: no gap measured;
 // `radius_to_size` > 0: the curvature's sizes too (curvature_size.h; 0: none).
 // The gaps and the curvature share one field (the smaller size wins) and one budget: past it, the gaps
-// alone, else the curvature alone. No field when none is held.
-inline Feature_sizing feature_size_field(const Input_surface& surface, const Feature_graph& g, const std::vector<Eigen::Matrix3d>& Q,
-                                         std::size_t n, bool gaps = true, double radius_to_size = 1.25,
-                                         double grading = 1.2, double cap = 6.0, double gap_to_size = 1.3, double area_budget = 6.0)
+// alone, else the curvature alone. No field when none is held. In two steps: measure_feature_gaps(), what
+// the sizings with and without the curvature share (Feature_sizing_measure: the feature graph, the metric's square roots at the input vertices, the faces' metric areas, the output
+// edge length h (0 when there is none) and the narrow gaps of the crease curves, none unless `gaps`), then
+// feature_size_field() from it.
+struct Feature_sizing_measure {
+  Feature_graph g;
+  std::vector<Eigen::Matrix3d> Q;
+  std::vector<double> face_area;
+  double area = 0, h = 0;
+  Narrow_feature_points found;
+};
+
+inline Feature_sizing_measure measure_feature_gaps(const Input_surface& surface, Feature_graph g, std::vector<Eigen::Matrix3d> Q,
+                                                   std::size_t n, bool gaps = true, double cap = 6.0, double gap_to_size = 1.3)
 {
-  Feature_sizing out;
-  if(n == 0) return out;
+  Feature_sizing_measure m;
+  m.g = std::move(g);
+  m.Q = std::move(Q);
+  if(n == 0) return m;
   const auto& P = surface.points();
   // the metric area (Heron on the metric lengths of each face) and the output edge length
-  std::vector<double> face_area(surface.number_of_faces(), 0.0);
-  double area = 0;
-  for(std::size_t f = 0; f < face_area.size(); ++f) {
+  m.face_area.assign(surface.number_of_faces(), 0.0);
+  for(std::size_t f = 0; f < m.face_area.size(); ++f) {
     const auto& t = surface.faces()[f];
-    const double a = metric_segment_length(P[t[0]], P[t[1]], Q[t[0]], Q[t[1]]);
-    const double b = metric_segment_length(P[t[1]], P[t[2]], Q[t[1]], Q[t[2]]);
-    const double c = metric_segment_length(P[t[2]], P[t[0]], Q[t[2]], Q[t[0]]);
-    face_area[f] = heron_area(a, b, c);
-    area += face_area[f];
+    const double a = metric_segment_length(P[t[0]], P[t[1]], m.Q[t[0]], m.Q[t[1]]);
+    const double b = metric_segment_length(P[t[1]], P[t[2]], m.Q[t[1]], m.Q[t[2]]);
+    const double c = metric_segment_length(P[t[2]], P[t[0]], m.Q[t[2]], m.Q[t[0]]);
+    m.face_area[f] = heron_area(a, b, c);
+    m.area += m.face_area[f];
   }
-  const double h = std::sqrt(2 * area / (std::sqrt(3.0) * double(n)));
-  if(!(h > 0) || !std::isfinite(h)) return out;
-  const double largest_h = std::sqrt(area_budget) * h;
+  const double h = std::sqrt(2 * m.area / (std::sqrt(3.0) * double(n)));
+  if(!(h > 0) || !std::isfinite(h)) return m;
+  m.h = h;
   // the crease gaps
-  Narrow_feature_points found;
   if(gaps) {
-    const std::vector<Feature_polyline> lines = feature_polylines(surface, g, Q, h);
-    if(!lines.empty()) found = narrow_feature_points(surface, lines, Q, h, cap, gap_to_size);
+    const std::vector<Feature_polyline> lines = feature_polylines(surface, m.g, m.Q, h);
+    if(!lines.empty()) m.found = narrow_feature_points(surface, lines, m.Q, h, cap, gap_to_size);
   }
+  return m;
+}
+
+// The field (see above) from the measure `m`; `radius_to_size` > 0: with the curvature's sizes
+inline Feature_sizing feature_size_field(const Input_surface& surface, const Feature_sizing_measure& m, std::size_t n,
+                                         double radius_to_size = 1.25, double grading = 1.2, double cap = 6.0,
+                                         double area_budget = 6.0)
+{
+  Feature_sizing out;
+  if(n == 0 || !(m.h > 0)) return out;
+  const auto& P = surface.points();
+  const Feature_graph& g = m.g;
+  const std::vector<Eigen::Matrix3d>& Q = m.Q;
+  const std::vector<double>& face_area = m.face_area;
+  const double area = m.area, h = m.h;
+  const double largest_h = std::sqrt(area_budget) * h;
+  const Narrow_feature_points& found = m.found;
   const auto& narrow = found.points;
   out.report.narrow_points = narrow.size() + found.too_narrow;
   if(out.report.narrow_points > 0) out.report.gap_min = found.gap_min / h;
@@ -469,20 +496,28 @@ inline Feature_sizing feature_size_field(const Input_surface& surface, const Fea
 // The feature sizing of `metric` for the request: the input's feature graph as remesh_in_domain.h's
 // start_pipeline() detects it, the metric at the input vertices, the scales of the narrow gaps (when
 // `options.feature_sizing`) and of the curvature (when `curvature`; none without either).
+// With `shared`, the measure (graph, metric, gaps) is taken from there, or stored there when this call
+// measures it: the sizings with and without the curvature measure it once.
 template <typename AnisotropicMetric>
 Feature_sizing feature_sizing(const Input_surface& surface, const AnisotropicMetric& metric, const Remeshing_options& options,
-                              bool curvature = false)
+                              bool curvature = false, std::shared_ptr<const Feature_sizing_measure>* shared = nullptr)
 {
   if(options.number_of_vertices < 3) return {};
-  Feature_graph g = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
-  if(options.drop_ragged_creases) {
-    Ragged_creases ragged;
-    g = without_ragged_crease_components(surface, g, options.number_of_vertices, options.feature_angle, options.corner_angle,
-                                         options.feature_edges, options.feature_vertices, ragged);
+  std::shared_ptr<const Feature_sizing_measure> m = shared ? *shared : nullptr;
+  if(!m) {
+    Feature_graph g = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
+    if(options.drop_ragged_creases) {
+      Ragged_creases ragged;
+      g = without_ragged_crease_components(surface, g, options.number_of_vertices, options.feature_angle, options.corner_angle,
+                                           options.feature_edges, options.feature_vertices, ragged);
+    }
+    if((g.curves.empty() || !options.feature_sizing) && !curvature) return {};  // nothing to measure
+    m = std::make_shared<const Feature_sizing_measure>(measure_feature_gaps(
+        surface, std::move(g), compute_metric_square_roots(surface, metric), options.number_of_vertices, options.feature_sizing));
+    if(shared) *shared = m;
   }
-  if((g.curves.empty() || !options.feature_sizing) && !curvature) return {};
-  return feature_size_field(surface, g, compute_metric_square_roots(surface, metric), options.number_of_vertices,
-                            options.feature_sizing, curvature ? 1.25 : 0.0);
+  if((m->g.curves.empty() || !options.feature_sizing) && !curvature) return {};
+  return feature_size_field(surface, *m, options.number_of_vertices, curvature ? 1.25 : 0.0);
 }
 
 // The feature sizing of one input, metric and options (above), computed at most once
@@ -490,6 +525,7 @@ Feature_sizing feature_sizing(const Input_surface& surface, const AnisotropicMet
 // curves, spends 0.6 s on it), without and with the curvature's sizes (`sizing[curvature]`)
 struct Feature_sizing_once {
   std::optional<Feature_sizing> sizing[2];
+  std::shared_ptr<const Feature_sizing_measure> measure;  // what both share (feature_sizing())
   double seconds[2] = {0, 0};  // what computing each took
   // the sizing, computed by `compute` if it was not yet (its time then added to `spent`)
   const Feature_sizing& get(bool curvature, const std::function<Feature_sizing()>& compute, double& spent)
