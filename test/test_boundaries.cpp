@@ -97,7 +97,8 @@ double diagonal(const AC::Input_surface& s)
 // number of loops, each output loop's vertices on one input loop (within 1e-9 of the diagonal), no
 // inverted triangle; prints the quality
 template <typename Domain>
-AC::Remeshing_result check_remesh(const std::string& name, const AC::Input_surface& input, std::size_t n)
+AC::Remeshing_result check_remesh(const std::string& name, const AC::Input_surface& input, std::size_t n,
+                                  AC::Remeshed_surface* output = nullptr)
 {
   AC::Remeshing_result result;
   const AC::Remeshed_surface out =
@@ -136,6 +137,7 @@ AC::Remeshing_result check_remesh(const std::string& name, const AC::Input_surfa
   std::printf("%-16s n=%zu loops=%zu genus=%d boundary vertices=%zu G_avg=%.3f theta_min=%.1f %%<30=%.1f hausdorff=%.2e\n",
               name.c_str(), n, s.boundary_loops().size(), s.genus(), on_loops, result.quality.G_avg, result.quality.theta_min,
               result.quality.percent_below_30, result.hausdorff_distance_relative);
+  if(output) *output = out;
   return result;
 }
 
@@ -260,6 +262,73 @@ BOOST_AUTO_TEST_CASE(the_shark_loop_edges_the_dual_misses_are_recovered_by_flips
   BOOST_TEST(r.loop_edges_recovered > 0u);
   BOOST_TEST(r.quality.G_avg > 0.9);
   BOOST_TEST(r.quality.theta_min > 20.0);
+}
+
+// A 24 x 24 plate with two square holes of k x k cells that meet at one corner, (12, 12): the corner
+// vertex is duplicated (one copy in the faces of each of the two plate cells that touch it), so the
+// surface is manifold and the two holes are one boundary loop passing twice through that point (a
+// figure-of-eight hole, 8 k edges). CGAL's elephant-with-holes.off has 38 such loops (65 coincident
+// pairs of boundary vertices; benchmark/boundaries.md) and fails in the cone domain for another reason,
+// still open; this checks that a pinched hole as such keeps its loop and both copies of the pinch point.
+// Measured here: G_avg 0.937-0.955, theta_min 34.6-39.9; with the tool (seed 0) at 300 to 1500 vertices
+// for k = 1, 2 and 4 through the sphere, and at 300 and 800 through cones: G_avg 0.938-0.958, theta_min
+// 34.7-39.6.
+namespace {
+AC::Input_surface make_plate_with_pinched_hole(int k)
+{
+  const int m = 24, c = 12;
+  auto hole = [&](int i, int j) { return (i >= c - k && i < c && j >= c - k && j < c) || (i >= c && i < c + k && j >= c && j < c + k); };
+  std::vector<Eigen::Vector3d> points;
+  for(int j = 0; j <= m; ++j)
+    for(int i = 0; i <= m; ++i) points.push_back(Eigen::Vector3d(double(i) / m, double(j) / m, 0));
+  auto at = [m](int i, int j) { return std::size_t(j * (m + 1) + i); };
+  const std::size_t pinch = at(c, c), copy = points.size();
+  points.push_back(points[pinch]);
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j < m; ++j)
+    for(int i = 0; i < m; ++i) {
+      if(hole(i, j)) continue;
+      AC::Input_surface::Face f{{at(i, j), at(i + 1, j), at(i + 1, j + 1)}}, g{{at(i, j), at(i + 1, j + 1), at(i, j + 1)}};
+      if(i == c && j == c - 1)  // the cell below-right of the pinch takes the copy
+        for(auto* t : {&f, &g})
+          for(std::size_t& v : *t)
+            if(v == pinch) v = copy;
+      faces.push_back(f);
+      faces.push_back(g);
+    }
+  // drop the vertices inside the holes (no face)
+  std::vector<long> index(points.size(), -1);
+  for(const auto& f : faces)
+    for(std::size_t v : f) index[v] = 0;
+  std::vector<Eigen::Vector3d> kept;
+  for(std::size_t v = 0; v < points.size(); ++v)
+    if(index[v] == 0) {
+      index[v] = long(kept.size());
+      kept.push_back(points[v]);
+    }
+  for(auto& f : faces)
+    for(std::size_t& v : f) v = std::size_t(index[v]);
+  return AC::Input_surface(std::move(kept), std::move(faces));
+}
+} // namespace
+
+BOOST_AUTO_TEST_CASE(plate_with_a_pinched_hole_keeps_its_loop_through_the_pinch_twice)
+{
+  for(int k : {1, 4}) {
+    const AC::Input_surface plate = make_plate_with_pinched_hole(k);
+    BOOST_TEST_REQUIRE(plate.boundary_loops().size() == 2u);  // the outline and the figure-of-eight hole
+    const std::size_t hole = plate.boundary_loops()[0].size() < plate.boundary_loops()[1].size() ? 0 : 1;
+    BOOST_TEST_REQUIRE(plate.boundary_loops()[hole].size() == std::size_t(8 * k));
+    for(std::size_t n : {300u, 800u}) {
+      AC::Remeshed_surface out;
+      const AC::Remeshing_result checked = check_remesh<AC::Spherical_domain>("plate pinched hole", plate, n, &out);
+      std::size_t at_pinch = 0;
+      for(const Eigen::Vector3d& p : out.points) at_pinch += (p - Eigen::Vector3d(0.5, 0.5, 0)).norm() < 1e-12;
+      BOOST_TEST(at_pinch == 2u);  // both copies: the output's loop passes twice through the pinch too
+      BOOST_TEST(checked.quality.G_avg > 0.9);
+      BOOST_TEST(checked.quality.theta_min > 25.0);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(torus_with_a_hole_keeps_its_genus_and_loop)
