@@ -41,6 +41,23 @@ AC::Input_surface read_case(const std::string& name)
   return AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_TEST_DATA_DIR) + "/cases/" + name);
 }
 
+// The surface of `faces` over `points` without the points of no face (those inside the holes)
+AC::Input_surface without_unused_points(const std::vector<Eigen::Vector3d>& points, std::vector<AC::Input_surface::Face> faces)
+{
+  std::vector<long> index(points.size(), -1);
+  for(const auto& f : faces)
+    for(std::size_t v : f) index[v] = 0;
+  std::vector<Eigen::Vector3d> kept;
+  for(std::size_t v = 0; v < points.size(); ++v)
+    if(index[v] == 0) {
+      index[v] = long(kept.size());
+      kept.push_back(points[v]);
+    }
+  for(auto& f : faces)
+    for(std::size_t& v : f) v = std::size_t(index[v]);
+  return AC::Input_surface(std::move(kept), std::move(faces));
+}
+
 // A unit square plate of m x m quads without the cells (i, j) where hole(i, j)
 template <typename Hole>
 AC::Input_surface make_plate(int m, const Hole& hole)
@@ -56,19 +73,7 @@ AC::Input_surface make_plate(int m, const Hole& hole)
       faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
       faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
     }
-  // drop the vertices inside the holes (no face)
-  std::vector<long> index(points.size(), -1);
-  for(const auto& f : faces)
-    for(std::size_t v : f) index[v] = 0;
-  std::vector<Eigen::Vector3d> kept;
-  for(std::size_t v = 0; v < points.size(); ++v)
-    if(index[v] == 0) {
-      index[v] = long(kept.size());
-      kept.push_back(points[v]);
-    }
-  for(auto& f : faces)
-    for(std::size_t& v : f) v = std::size_t(index[v]);
-  return AC::Input_surface(std::move(kept), std::move(faces));
+  return without_unused_points(points, std::move(faces));
 }
 
 // A unit square plate of m x m quads with the quads of two rectangles of cells removed: 3 loops (the
@@ -296,19 +301,7 @@ AC::Input_surface make_plate_with_pinched_hole(int k)
       faces.push_back(f);
       faces.push_back(g);
     }
-  // drop the vertices inside the holes (no face)
-  std::vector<long> index(points.size(), -1);
-  for(const auto& f : faces)
-    for(std::size_t v : f) index[v] = 0;
-  std::vector<Eigen::Vector3d> kept;
-  for(std::size_t v = 0; v < points.size(); ++v)
-    if(index[v] == 0) {
-      index[v] = long(kept.size());
-      kept.push_back(points[v]);
-    }
-  for(auto& f : faces)
-    for(std::size_t& v : f) v = std::size_t(index[v]);
-  return AC::Input_surface(std::move(kept), std::move(faces));
+  return without_unused_points(points, std::move(faces));
 }
 } // namespace
 
