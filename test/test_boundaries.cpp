@@ -277,7 +277,7 @@ BOOST_AUTO_TEST_CASE(the_shark_loop_edges_the_dual_misses_are_recovered_by_flips
 // still open; this checks that a pinched hole as such keeps its loop and both copies of the pinch point.
 // Measured here: G_avg 0.937-0.955, theta_min 34.6-39.9; with the tool (seed 0) at 300 to 1500 vertices
 // for k = 1, 2 and 4 through the sphere, and at 300 and 800 through cones: G_avg 0.938-0.958, theta_min
-// 34.7-39.6.
+// 34.7-40.0.
 namespace {
 AC::Input_surface make_plate_with_pinched_hole(int k)
 {
