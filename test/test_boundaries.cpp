@@ -58,21 +58,29 @@ AC::Input_surface without_unused_points(const std::vector<Eigen::Vector3d>& poin
   return AC::Input_surface(std::move(kept), std::move(faces));
 }
 
-// A unit square plate of m x m quads without the cells (i, j) where hole(i, j)
+// The grid of a unit square plate of m x m quads, (m + 1)^2 points (point (i, j) at j (m + 1) + i), two
+// triangles a cell but for the cells (i, j) where hole(i, j)
 template <typename Hole>
-AC::Input_surface make_plate(int m, const Hole& hole)
+void plate_grid(int m, const Hole& hole, std::vector<Eigen::Vector3d>& points, std::vector<AC::Input_surface::Face>& faces)
 {
-  std::vector<Eigen::Vector3d> points;
   for(int j = 0; j <= m; ++j)
     for(int i = 0; i <= m; ++i) points.push_back(Eigen::Vector3d(double(i) / m, double(j) / m, 0));
   auto at = [m](int i, int j) { return std::size_t(j * (m + 1) + i); };
-  std::vector<AC::Input_surface::Face> faces;
   for(int j = 0; j < m; ++j)
     for(int i = 0; i < m; ++i) {
       if(hole(i, j)) continue;
       faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
       faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
     }
+}
+
+// A unit square plate of m x m quads without the cells (i, j) where hole(i, j)
+template <typename Hole>
+AC::Input_surface make_plate(int m, const Hole& hole)
+{
+  std::vector<Eigen::Vector3d> points;
+  std::vector<AC::Input_surface::Face> faces;
+  plate_grid(m, hole, points, faces);
   return without_unused_points(points, std::move(faces));
 }
 
@@ -282,25 +290,17 @@ namespace {
 AC::Input_surface make_plate_with_pinched_hole(int k)
 {
   const int m = 24, c = 12;
-  auto hole = [&](int i, int j) { return (i >= c - k && i < c && j >= c - k && j < c) || (i >= c && i < c + k && j >= c && j < c + k); };
   std::vector<Eigen::Vector3d> points;
-  for(int j = 0; j <= m; ++j)
-    for(int i = 0; i <= m; ++i) points.push_back(Eigen::Vector3d(double(i) / m, double(j) / m, 0));
-  auto at = [m](int i, int j) { return std::size_t(j * (m + 1) + i); };
-  const std::size_t pinch = at(c, c), copy = points.size();
-  points.push_back(points[pinch]);
   std::vector<AC::Input_surface::Face> faces;
-  for(int j = 0; j < m; ++j)
-    for(int i = 0; i < m; ++i) {
-      if(hole(i, j)) continue;
-      AC::Input_surface::Face f{{at(i, j), at(i + 1, j), at(i + 1, j + 1)}}, g{{at(i, j), at(i + 1, j + 1), at(i, j + 1)}};
-      if(i == c && j == c - 1)  // the cell below-right of the pinch takes the copy
-        for(auto* t : {&f, &g})
-          for(std::size_t& v : *t)
-            if(v == pinch) v = copy;
-      faces.push_back(f);
-      faces.push_back(g);
-    }
+  plate_grid(m, [&](int i, int j) { return (i >= c - k && i < c && j >= c - k && j < c) || (i >= c && i < c + k && j >= c && j < c + k); },
+             points, faces);
+  // the faces at the pinch below it (those of the cell below-right: another of their points has j < c)
+  // take the copy
+  const std::size_t pinch = std::size_t(c * (m + 1) + c), copy = points.size();
+  points.push_back(points[pinch]);
+  for(auto& f : faces)
+    if(std::count(f.begin(), f.end(), pinch) && std::any_of(f.begin(), f.end(), [&](std::size_t v) { return v < std::size_t(c * (m + 1)); }))
+      std::replace(f.begin(), f.end(), pinch, copy);
   return without_unused_points(points, std::move(faces));
 }
 } // namespace
