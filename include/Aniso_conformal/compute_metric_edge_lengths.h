@@ -27,7 +27,8 @@ namespace Aniso_conformal {
  * \tparam AnisotropicMetric a model of `AnisotropicMetric`
  * \throws Invalid_input naming the vertex if a tensor has a non-finite entry, is not symmetric, or is
  *         not positive definite on the tangent plane (relative smallest eigenvalue below `1e-12`;
- *         a tensor may be singular along the normal, as the paper's eq. 4 is)
+ *         a tensor may be singular along the normal, as the paper's eq. 4 is; at a vertex whose normal
+ *         is zero, its faces' normals cancelling, it must be positive definite in space)
  */
 template <typename AnisotropicMetric>
 std::vector<Eigen::Matrix3d> compute_metric_square_roots(const Input_surface& surface, const AnisotropicMetric& metric)

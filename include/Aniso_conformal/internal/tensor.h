@@ -41,9 +41,16 @@ inline bool all_finite(const Eigen::Matrix3d& M)
 }
 
 // Smallest eigenvalue of M restricted to the plane orthogonal to the unit vector n, relative to the
-// largest eigenvalue of M. A tensor is usable on a surface when this is clearly positive.
+// largest eigenvalue of M. A tensor is usable on a surface when this is clearly positive. Where the
+// tangent plane is undefined (n zero: a vertex whose faces' normals cancel, as the bridge vertex of a
+// pinched hole's patches, hole_patches.h), M must be positive definite in space.
 inline double tangent_positivity(const Eigen::Matrix3d& M, const Eigen::Vector3d& n)
 {
+  if(n.squaredNorm() == 0) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (M + M.transpose()));
+    const double big = std::max(std::abs(es.eigenvalues()[2]), M.cwiseAbs().maxCoeff());
+    return big > 0 ? es.eigenvalues()[0] / big : 0;
+  }
   Eigen::Vector3d t1 = n.unitOrthogonal();
   Eigen::Vector3d t2 = n.cross(t1);
   Eigen::Matrix<double, 3, 2> T;

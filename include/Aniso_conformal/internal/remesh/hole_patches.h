@@ -34,6 +34,7 @@
 #include <iterator>
 #include <map>
 #include <queue>
+#include <set>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -43,7 +44,10 @@
 // patch, a cone from a new apex vertex to the loop (or, where that cone would fold over itself, a fill
 // by Liepa's method, close_holes()), so that the surface becomes closed of the same genus
 // and goes to the sphere, the flat torus or the hyperbolic disk as a closed surface does; the input is
-// never modified. In the background (Intrinsic_triangulation) the patch's faces carry no CVT density and
+// never modified. In the second run after a failed one (remesh_in_domain.h, run_pipeline()), a loop that
+// passes twice through one point (a pinch) is cut there into pieces joined by a bridge vertex, each
+// closed by its own patch (split_loop_at_pinches(), close_pinched_loop()).
+// In the background (Intrinsic_triangulation) the patch's faces carry no CVT density and
 // each loop is a seam whose edges are never flipped; sites are fixed along every seam at about equal
 // metric arc length (their number from the loop's metric length and the output edge length, as the
 // plane places the boundary sites of a disk), at background vertices on the seam, so that they map back
@@ -60,6 +64,7 @@ struct Patch_vertex {
   std::size_t loop = 0;
   std::size_t at = 0;
   double t = 1;
+  bool bridge = false;  // a bridge vertex of split_loop_at_pinches(): the metric there is made isotropic
 };
 
 // The input with its holes closed: `closed` has the input's vertices first (same indices), then each
@@ -71,6 +76,7 @@ struct Hole_patches {
   std::vector<std::vector<std::size_t>> loops;  // the input's boundary loops, in the orientation of its faces
   std::vector<std::size_t> apex;                // per loop, its patch's apex in `closed`
   std::vector<Patch_vertex> patch_vertices;     // the vertices of `closed` from input_vertices on
+  std::vector<std::size_t> pinch_vertices;      // sorted: the loop vertices at a pinch (split_loop_at_pinches())
 };
 
 // `true` if the cone of close_holes() over `loop` (points `pts`, centroid `c`, Newell vector `newell`)
@@ -92,18 +98,19 @@ inline bool cone_folds(const std::vector<Eigen::Vector3d>& pts, const std::vecto
   return false;
 }
 
-// A hole of `s` filled by Liepa's method (Liepa 2003, "Filling holes in meshes"; CGAL's
+// A hole of the surface (`surface_points`, `surface_faces`) filled by Liepa's method (Liepa 2003, "Filling holes in meshes"; CGAL's
 // triangulate_refine_and_fair_hole(): a triangulation of the loop minimising the worst dihedral angle,
 // then area, among triangles that add no edge the surface has already; refined to the density of the
 // loop's edges; its new vertices moved to minimise the bi-Laplacian energy (cotangent weights, sparse
 // LU), which continues the surface smoothly across the loop). `loop` is the hole's loop in the
 // orientation of the faces. On success `points` receives the new vertices (their indices in the closed
-// surface `first + k`), `faces` the patch's triangles (indices: the input's below `s.number_of_vertices()`,
+// surface `first + k`), `faces` the patch's triangles (indices: the surface's below `surface_points.size()`,
 // `first + k` for new vertex k), oriented as the surface; returns false, leaving both empty, if CGAL
 // finds no triangulation or the fill has no vertex inside (close_holes() then uses the cone). If the
 // fairing's linear solve fails, the refined triangulation is kept unfaired (flat triangles spanning the loop).
-inline bool fill_hole_by_fairing(const Input_surface& s, const std::vector<std::size_t>& loop, std::size_t first,
-                                 std::vector<Eigen::Vector3d>& points, std::vector<Input_surface::Face>& faces)
+inline bool fill_hole_by_fairing(const std::vector<Eigen::Vector3d>& surface_points, const std::vector<Input_surface::Face>& surface_faces,
+                                 const std::vector<std::size_t>& loop, std::size_t first, std::vector<Eigen::Vector3d>& points,
+                                 std::vector<Input_surface::Face>& faces)
 {
   typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
   typedef CGAL::Surface_mesh<K::Point_3> Mesh;
@@ -111,8 +118,8 @@ inline bool fill_hole_by_fairing(const Input_surface& s, const std::vector<std::
   points.clear();
   faces.clear();
   Mesh m;
-  for(const Eigen::Vector3d& p : s.points()) m.add_vertex(K::Point_3(p.x(), p.y(), p.z()));
-  for(const auto& f : s.faces())
+  for(const Eigen::Vector3d& p : surface_points) m.add_vertex(K::Point_3(p.x(), p.y(), p.z()));
+  for(const auto& f : surface_faces)
     if(m.add_face(Mesh::Vertex_index(Mesh::size_type(f[0])), Mesh::Vertex_index(Mesh::size_type(f[1])),
                   Mesh::Vertex_index(Mesh::size_type(f[2]))) == Mesh::null_face())
       return false;
@@ -125,7 +132,7 @@ inline bool fill_hole_by_fairing(const Input_surface& s, const std::vector<std::
                                                                   std::back_inserter(new_vertices),
                                                                   CGAL::parameters::sparse_linear_solver(Solver()));
   if(new_faces.empty() || new_vertices.empty()) return false;
-  const std::size_t nv = s.number_of_vertices();
+  const std::size_t nv = surface_points.size();
   std::map<std::size_t, std::size_t> index;  // vertex of m -> vertex of the closed surface
   for(Mesh::Vertex_index v : new_vertices) {
     index[std::size_t(v)] = first + points.size();
@@ -148,6 +155,220 @@ inline bool fill_hole_by_fairing(const Input_surface& s, const std::vector<std::
   return true;
 }
 
+// The vertex of a fill (its `count` new vertices numbered from `first`, its triangles `fill_faces`)
+// farthest from the loop in edges (breadth-first over the patch): its offset from `first`
+inline std::size_t farthest_from_loop(std::size_t first, std::size_t count, const std::vector<Input_surface::Face>& fill_faces)
+{
+  std::vector<std::vector<std::size_t>> adjacent(count);
+  std::vector<int> hops(count, -1);
+  std::deque<std::size_t> queue;
+  for(const auto& f : fill_faces)
+    for(std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = f[k], b = f[(k + 1) % 3];
+      if(a >= first && b >= first) adjacent[a - first].push_back(b - first);
+      if(a >= first && b < first && hops[a - first] < 0) hops[a - first] = 1, queue.push_back(a - first);
+      if(b >= first && a < first && hops[b - first] < 0) hops[b - first] = 1, queue.push_back(b - first);
+    }
+  while(!queue.empty()) {
+    const std::size_t v = queue.front();
+    queue.pop_front();
+    for(std::size_t w : adjacent[v])
+      if(hops[w] < 0) hops[w] = hops[v] + 1, queue.push_back(w);
+  }
+  std::size_t apex = 0;
+  for(std::size_t k = 0; k < count; ++k)
+    if(hops[k] > hops[apex]) apex = k;
+  return apex;
+}
+
+// The pinches of a loop (`loop` over `points`): the pairs of its vertices at one point, or closer than
+// a tenth of the shorter loop edge at either, at least two loop edges apart both ways round; found by a
+// sweep along x, O(n log n) for a loop of n vertices without any
+inline std::vector<std::pair<std::size_t, std::size_t>> pinch_pairs(const std::vector<std::size_t>& loop, const std::vector<Eigen::Vector3d>& points)
+{
+  const std::size_t n = loop.size();
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  if(n < 6) return pairs;
+  std::vector<double> shortest(n);  // per position, its shorter loop edge
+  for(std::size_t i = 0; i < n; ++i)
+    shortest[i] = std::min((points[loop[i]] - points[loop[(i + 1) % n]]).norm(), (points[loop[i]] - points[loop[(i + n - 1) % n]]).norm());
+  const double reach = 0.1 * *std::max_element(shortest.begin(), shortest.end());
+  std::vector<std::size_t> order(n);
+  for(std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return points[loop[a]].x() < points[loop[b]].x(); });
+  for(std::size_t a = 0; a < n; ++a)
+    for(std::size_t b = a + 1; b < n && points[loop[order[b]]].x() - points[loop[order[a]]].x() <= reach; ++b) {
+      const std::size_t i = std::min(order[a], order[b]), j = std::max(order[a], order[b]);
+      if(j - i >= 2 && n - (j - i) >= 2 && (points[loop[i]] - points[loop[j]]).norm() < 0.1 * std::min(shortest[i], shortest[j]))
+        pairs.push_back({loop[i], loop[j]});
+    }
+  return pairs;
+}
+
+// `true` if a boundary loop of `s` passes twice through one point (pinch_pairs())
+inline bool has_pinched_loop(const Input_surface& s)
+{
+  for(const auto& loop : s.boundary_loops())
+    if(!pinch_pairs(loop, s.points()).empty()) return true;
+  return false;
+}
+
+// A loop that passes twice through a point (a pinch: two loop vertices at the same point, or closer
+// than a tenth of their shortest loop edge, as where two holes of a scan touch at a corner) cut into
+// pieces, each to be closed by its own patch: repeatedly, the pinch pair (x, x') whose shorter side of
+// the loop is shortest is cut off as a lobe (x ... x', b) by a new bridge vertex b, and the rest of the
+// loop goes (... x, b, x' ...), so that the patches of the two sides meet along the path x - b - x' and
+// the two copies of the point are two edges apart in the closed surface, not joined through one patch
+// (a patch over the whole loop put a copy one patch edge from the other copy's loop neighbours: CGAL's
+// elephant-with-holes, benchmark/boundaries.md). Each bridge adds a vertex, two edges and a face, so
+// the closed surface keeps the input's genus. The bridge vertex is put at `points`' end, above the pinch
+// (along -`up`, where the patches go) by the mean length of the four loop edges at x and x', and
+// recorded in `patch_vertices` (its metric isotropic, Patched_metric); the two copies of each pinch are
+// appended to `pinch_vertices`. Returns the pieces (vertices of the closed surface, in the loop's
+// orientation); the loop itself if it has no pinch. Time O(n log n) for a loop of n vertices without
+// a pinch, O(n p^2) with p pinches.
+inline std::vector<std::vector<std::size_t>> split_loop_at_pinches(const std::vector<std::size_t>& loop, std::size_t l, const Eigen::Vector3d& up,
+                                                                   std::vector<Eigen::Vector3d>& points,
+                                                                   std::vector<Patch_vertex>& patch_vertices,
+                                                                   std::vector<std::size_t>& pinch_vertices)
+{
+  const std::size_t n = loop.size();
+  const std::vector<std::pair<std::size_t, std::size_t>> pairs = pinch_pairs(loop, points);
+  if(pairs.empty()) return {loop};
+  std::vector<double> shortest(n);  // per position, its shorter loop edge
+  for(std::size_t i = 0; i < n; ++i)
+    shortest[i] = std::min((points[loop[i]] - points[loop[(i + 1) % n]]).norm(), (points[loop[i]] - points[loop[(i + n - 1) % n]]).norm());
+  std::map<std::size_t, std::size_t> position;  // loop vertex -> its position in `loop`
+  for(std::size_t i = 0; i < n; ++i) position[loop[i]] = i;
+  std::vector<std::vector<std::size_t>> pieces;
+  std::vector<std::size_t> rest = loop;
+  std::vector<char> cut(pairs.size(), 0);
+  const std::size_t first_bridge = points.size();
+  // `true` if the side rest[from ... from + span] has a loop vertex away from its ends' point (at a point
+  // where the loop passes three times, the last side left can hold only copies and bridges)
+  const auto away = [&](std::size_t from, std::size_t span) {
+    const Eigen::Vector3d& x = points[rest[from]];
+    for(std::size_t k = 1; k < span; ++k) {
+      const std::size_t v = rest[(from + k) % rest.size()];
+      if(v < first_bridge && (points[v] - x).norm() >= 0.1 * shortest[position[v]]) return true;
+    }
+    return false;
+  };
+  for(;;) {
+    const std::size_t m = rest.size();
+    std::size_t best_from = 0, best_span = m, best_pair = 0;  // the lobe: rest[best_from ... best_from + best_span] (cyclic)
+    for(std::size_t q = 0; q < pairs.size(); ++q) {
+      if(cut[q]) continue;
+      std::size_t i = std::size_t(std::find(rest.begin(), rest.end(), pairs[q].first) - rest.begin());
+      std::size_t j = std::size_t(std::find(rest.begin(), rest.end(), pairs[q].second) - rest.begin());
+      if(i > j) std::swap(i, j);
+      const std::size_t inner = j - i, outer = m - inner;
+      if(inner < 2 || outer < 2) continue;  // the pair already two edges apart through a bridge
+      if(inner < best_span && away(i, inner)) best_from = i, best_span = inner, best_pair = q;
+      if(outer < best_span && away(j, outer)) best_from = j, best_span = outer, best_pair = q;
+    }
+    if(best_span >= m) break;
+    cut[best_pair] = 1;
+    const std::size_t x = rest[best_from], x2 = rest[(best_from + best_span) % m];
+    pinch_vertices.push_back(x);
+    pinch_vertices.push_back(x2);
+    // the bridge vertex, above the pinch by the mean of the four loop edges there
+    double h = 0;
+    for(std::size_t v : {x, x2}) {
+      const std::size_t k = position[v];
+      h += (points[loop[(k + 1) % n]] - points[v]).norm() + (points[loop[(k + n - 1) % n]] - points[v]).norm();
+    }
+    const std::size_t bridge = points.size();
+    points.push_back(0.5 * (points[x] + points[x2]) - 0.25 * h * up.normalized());
+    patch_vertices.push_back({l, x, 0.5, true});
+    std::vector<std::size_t> lobe, others;
+    for(std::size_t k = 0; k <= best_span; ++k) lobe.push_back(rest[(best_from + k) % m]);
+    lobe.push_back(bridge);
+    for(std::size_t k = best_span; k <= m; ++k) others.push_back(rest[(best_from + k) % m]);
+    others.push_back(bridge);
+    pieces.push_back(std::move(lobe));
+    rest = std::move(others);
+  }
+  pieces.push_back(rest);
+  return pieces;
+}
+
+// Closes the pieces of a pinched loop `l` (split_loop_at_pinches()) one by one, each as a whole loop
+// is closed (close_holes()): a cone over the piece, or where that cone folds, Liepa's fill of the piece
+// as a hole of the surface with the pieces before it closed by their patches and those after it by
+// their cones (so that the fairing sees a surface around the whole piece). A fill with an edge between
+// two copies of a pinch point (shorter than a tenth of the piece's mean edge) is not kept: the cone is.
+// The loop's apex (`apexes`, for the sphere's apex site) is that of its largest piece.
+// \throws Remeshing_failure if a piece spans no area
+inline void close_pinched_loop(const std::vector<std::vector<std::size_t>>& pieces, std::size_t l, std::vector<Eigen::Vector3d>& points,
+                               std::vector<Input_surface::Face>& faces, std::vector<Patch_vertex>& patch_vertices,
+                               std::vector<std::size_t>& apexes)
+{
+  // each piece's cone: its apex above the piece's centroid at half its mean radius, as close_holes()'s
+  std::vector<Eigen::Vector3d> centroid(pieces.size()), newell(pieces.size()), top(pieces.size());
+  std::vector<double> mean_edge(pieces.size(), 0);
+  for(std::size_t i = 0; i < pieces.size(); ++i) {
+    const std::vector<std::size_t>& piece = pieces[i];
+    centroid[i] = newell[i] = Eigen::Vector3d::Zero();
+    for(std::size_t v : piece) centroid[i] += points[v];
+    centroid[i] /= double(piece.size());
+    double radius = 0;
+    for(std::size_t k = 0; k < piece.size(); ++k) {
+      newell[i] += points[piece[k]].cross(points[piece[(k + 1) % piece.size()]]);
+      radius += (points[piece[k]] - centroid[i]).norm();
+      mean_edge[i] += (points[piece[k]] - points[piece[(k + 1) % piece.size()]]).norm() / double(piece.size());
+    }
+    radius /= double(piece.size());
+    if(!(newell[i].norm() > 1e-12 * radius * radius))
+      throw Remeshing_failure("remesh(): a piece of boundary loop " + std::to_string(l) + " between two passes through one point (" +
+                              std::to_string(piece.size()) + " vertices) spans no area");
+    top[i] = centroid[i] - 0.5 * radius * newell[i].normalized();
+  }
+  const auto cone = [&](std::size_t i, std::vector<Eigen::Vector3d>& pts, std::vector<Input_surface::Face>& fcs) {
+    const std::size_t apex = pts.size();
+    pts.push_back(top[i]);
+    for(std::size_t k = 0; k < pieces[i].size(); ++k) fcs.push_back({{pieces[i][(k + 1) % pieces[i].size()], pieces[i][k], apex}});
+    return apex;
+  };
+  std::size_t largest = 0;
+  for(std::size_t i = 0; i < pieces.size(); ++i) {
+    const std::vector<std::size_t>& piece = pieces[i];
+    std::size_t apex = 0;
+    bool filled = false;
+    if(piece.size() <= 1000 && cone_folds(points, piece, centroid[i], newell[i])) {
+      std::vector<Eigen::Vector3d> around = points;
+      std::vector<Input_surface::Face> around_faces = faces;
+      for(std::size_t j = i + 1; j < pieces.size(); ++j) cone(j, around, around_faces);
+      std::vector<Eigen::Vector3d> fill_points;
+      std::vector<Input_surface::Face> fill_faces;
+      if(fill_hole_by_fairing(around, around_faces, piece, points.size(), fill_points, fill_faces)) {
+        filled = true;
+        for(const auto& f : fill_faces)
+          for(std::size_t k = 0; k < 3; ++k) {
+            const std::size_t a = f[k], b = f[(k + 1) % 3];
+            const auto at = [&](std::size_t v) -> const Eigen::Vector3d& { return v < points.size() ? points[v] : fill_points[v - points.size()]; };
+            if((a >= points.size() && a < around.size()) || (b >= points.size() && b < around.size()) ||  // another piece's cone apex
+               (at(a) - at(b)).norm() < 0.1 * mean_edge[i])
+              filled = false;
+          }
+      }
+      if(filled) {
+        apex = points.size() + farthest_from_loop(points.size(), fill_points.size(), fill_faces);
+        for(const Eigen::Vector3d& q : fill_points) {
+          points.push_back(q);
+          patch_vertices.push_back({l, 0, 1.0});
+        }
+        faces.insert(faces.end(), fill_faces.begin(), fill_faces.end());
+      }
+    }
+    if(!filled) {
+      apex = cone(i, points, faces);
+      patch_vertices.push_back({l, 0, 1.0});
+    }
+    if(piece.size() > largest) largest = piece.size(), apexes.resize(l), apexes.push_back(apex);
+  }
+}
+
 // Closes each boundary loop of `s` with a virtual patch, so that the closed surface has the input's genus:
 // - a cone: its apex above the loop's centroid, at half the loop's mean radius, on the side the patch's
 //   orientation (consistent with the surface's) points to, one fan of triangles from the apex (cutting it
@@ -158,17 +379,20 @@ inline bool fill_hole_by_fairing(const Input_surface& s, const std::vector<std::
 //   (fill_hole_by_fairing()), whose patch continues the surface smoothly, so that the seam carries no
 //   more curvature than the surface around it; its apex (for the apex site of the sphere) is the new
 //   vertex farthest from the loop in edges. If that fill fails, or the loop has more than 1000 vertices
-//   (Liepa's search can be cubic in them), the cone is kept.
+//   (Liepa's search can be cubic in them), the cone is kept;
+// - with `split_pinches`, a loop that passes twice through one point is cut into pieces first
+//   (split_loop_at_pinches()), each closed as above (close_pinched_loop()).
 // Only the patches' intrinsic lengths matter (the positions enter the metric edge lengths only), and no
 // output vertex comes from them.
 // \throws Remeshing_failure if a loop spans no area or the closed surface is not valid
-inline Hole_patches close_holes(const Input_surface& s)
+inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = false)
 {
   const std::vector<std::vector<std::size_t>>& loops = s.boundary_loops();
   std::vector<Eigen::Vector3d> points = s.points();
   std::vector<Input_surface::Face> faces(s.faces().begin(), s.faces().end());
   std::vector<std::size_t> apexes;
   std::vector<Patch_vertex> patch_vertices;
+  std::vector<std::size_t> pinch_vertices;
   for(std::size_t l = 0; l < loops.size(); ++l) {
     const std::vector<std::size_t>& loop = loops[l];
     Eigen::Vector3d c = Eigen::Vector3d::Zero(), newell = Eigen::Vector3d::Zero();
@@ -183,33 +407,18 @@ inline Hole_patches close_holes(const Input_surface& s)
     if(!(newell.norm() > 1e-12 * radius * radius) || !(radius > 0))
       throw Remeshing_failure("remesh(): boundary loop " + std::to_string(l) + " (" + std::to_string(loop.size()) +
                               " vertices) spans no area; this version closes each hole with a cone over its loop");
+    const std::vector<std::vector<std::size_t>> pieces =
+      split_pinches ? split_loop_at_pinches(loop, l, newell, points, patch_vertices, pinch_vertices) : std::vector<std::vector<std::size_t>>{loop};
+    if(pieces.size() > 1) {
+      close_pinched_loop(pieces, l, points, faces, patch_vertices, apexes);
+      continue;
+    }
     std::vector<Eigen::Vector3d> fill_points;
     std::vector<Input_surface::Face> fill_faces;
     // Liepa's triangulation may fall back to a search cubic in the loop's size: the fill is tried on
     // loops of at most 1000 vertices (the scans' largest is 136)
-    if(loop.size() <= 1000 && cone_folds(s.points(), loop, c, newell) && fill_hole_by_fairing(s, loop, points.size(), fill_points, fill_faces)) {
-      // the apex: the new vertex farthest from the loop in edges (breadth-first over the patch)
-      const std::size_t first = points.size();
-      std::vector<std::vector<std::size_t>> adjacent(fill_points.size());
-      std::vector<int> hops(fill_points.size(), -1);
-      std::deque<std::size_t> queue;
-      for(const auto& f : fill_faces)
-        for(std::size_t k = 0; k < 3; ++k) {
-          const std::size_t a = f[k], b = f[(k + 1) % 3];
-          if(a >= first && b >= first) adjacent[a - first].push_back(b - first);
-          if(a >= first && b < first && hops[a - first] < 0) hops[a - first] = 1, queue.push_back(a - first);
-          if(b >= first && a < first && hops[b - first] < 0) hops[b - first] = 1, queue.push_back(b - first);
-        }
-      while(!queue.empty()) {
-        const std::size_t v = queue.front();
-        queue.pop_front();
-        for(std::size_t w : adjacent[v])
-          if(hops[w] < 0) hops[w] = hops[v] + 1, queue.push_back(w);
-      }
-      std::size_t apex = 0;
-      for(std::size_t k = 0; k < fill_points.size(); ++k)
-        if(hops[k] > hops[apex]) apex = k;
-      apexes.push_back(first + apex);
+    if(loop.size() <= 1000 && cone_folds(s.points(), loop, c, newell) && fill_hole_by_fairing(s.points(), s.faces(), loop, points.size(), fill_points, fill_faces)) {
+      apexes.push_back(points.size() + farthest_from_loop(points.size(), fill_points.size(), fill_faces));
       for(const Eigen::Vector3d& q : fill_points) {
         points.push_back(q);
         patch_vertices.push_back({l, 0, 1.0});
@@ -234,7 +443,10 @@ inline Hole_patches close_holes(const Input_surface& s)
                                               e.what() + ")");
                     }
                   }(),
-                  s.number_of_vertices(), s.number_of_faces(), loops, apexes, patch_vertices};
+                  s.number_of_vertices(), s.number_of_faces(), loops, apexes, patch_vertices, {}};
+  std::sort(pinch_vertices.begin(), pinch_vertices.end());
+  pinch_vertices.erase(std::unique(pinch_vertices.begin(), pinch_vertices.end()), pinch_vertices.end());
+  p.pinch_vertices = std::move(pinch_vertices);
   if(p.closed.genus() != s.genus() || !p.closed.boundary_loops().empty())
     throw Internal_error("close_holes(): the closed surface is " + p.closed.topology_description() + ", the input " +
                          s.topology_description());
@@ -256,10 +468,14 @@ public:
       for(std::size_t v : loop) M += Eigen::Matrix3d(m_metric.tensor(Surface_point::at_vertex(v, patches.closed.points()[v])));
       apex.push_back(M / double(loop.size()));
     }
-    for(const Patch_vertex& pv : patches.patch_vertices)
+    for(const Patch_vertex& pv : patches.patch_vertices) {
       m_apex.push_back(pv.t >= 1 ? apex[pv.loop]
                                  : Eigen::Matrix3d((1 - pv.t) * Eigen::Matrix3d(m_metric.tensor(Surface_point::at_vertex(pv.at, patches.closed.points()[pv.at]))) +
                                                    pv.t * apex[pv.loop]));
+      // a bridge vertex stands above its pinch, its tangent plane across the surface's: a tensor of the
+      // surface's tangent plane would be singular on it; the isotropic tensor of the same mean scale is not
+      if(pv.bridge) m_apex.back() = (0.5 * m_apex.back().trace()) * Eigen::Matrix3d::Identity();
+    }
     m_points = patches.closed.points();
   }
   Tensor tensor(const Surface_point& p) const
