@@ -152,7 +152,7 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
     std::printf(")\n");
     if(result.repairs.any()) std::printf("repairs      %s\n", result.repairs.summary().c_str());
     if(!result.domain_choice.empty()) std::printf("domain       %s\n", result.domain_choice.c_str());
-    if(!result.reseeded.empty()) std::printf("reseeded     the CVT ran again with the next seed: %s\n", result.reseeded.c_str());
+    if(!result.reseeded.empty()) std::printf("reseeded     the CVT ran again with the next seed (holes whose loop passes twice through a point closed lobe by lobe): %s\n", result.reseeded.c_str());
     if(result.stretch_limit.applied) {
       const AC::Stretch_limit_report& l = result.stretch_limit;
       std::printf("stretch cap  the metric's stretch (up to %.3g) was lowered at %zu input vertices to what straight edges can "

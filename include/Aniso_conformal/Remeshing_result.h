@@ -178,7 +178,10 @@ struct Remeshing_result {
   std::string corners_not_kept;
   /// empty, or why the first run of an input with boundary loops and no crease failed (a free site left on
   /// a loop's chain of sites, which then has no output edge): the output is that of a second run whose
-  /// CVT starts from initial sites drawn with `random_seed + 1` (remesh_in_domain.h, run_pipeline())
+  /// CVT starts from initial sites drawn with `random_seed + 1`; if a loop passes twice through one point,
+  /// any failure of the first run (its message here) leads to that run, which starts from the metric with
+  /// such holes closed lobe by lobe and those points no corners
+  /// (remesh_in_domain.h, run_pipeline(); manual, "A hole whose loop passes twice through one point")
   std::string reseeded;
   /// how the domain was chosen when the automatic choice left the topology's own: "cones, because the
   /// sphere failed: <its reason>" (issue 16, item 5); empty otherwise

@@ -83,7 +83,7 @@ Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMet
   // annulus at 300 measured G_avg 0.69; with it 0.922, the sphere's 0.884)
   if(closed && !surface.boundary_loops().empty() &&
      !((Domain::kind == Parametric_domain::SPHERE || Domain::kind == Parametric_domain::CONE) && surface.is_disk()))
-    start.patches.reset(new Hole_patches(close_holes(surface)));
+    start.patches.reset(new Hole_patches(close_holes(surface, options.split_pinched_loops)));
   const Input_surface& background = start.background(surface);
   if(!Domain::fits(background))
     throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
@@ -195,7 +195,7 @@ Remeshed_surface closed_domain_dual(const Input_surface& surface, const Pipeline
   std::vector<std::size_t> first;
   if(patches) {
     loops = place_loop_sites(itri, *patches, loop_edge_length, options.corner_angle,
-                             n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)));
+                             n - std::min(n, fixed.size() + std::max<std::size_t>(4, n / 4)), !options.split_pinched_loops);
     for(const auto& l : loops.vertices) {
       first.push_back(fixed.size());
       for(int v : l) fixed.push_back(seam_site<Domain>(emb, itri, v));
@@ -416,17 +416,26 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
   const bool creases = !start.features.curves.empty();
-  if(!creases) {  // with loops, a run whose free site blocks a loop's chain edge goes again with the next seed
+  if(!creases) {  // with loops, a run whose free site blocks a loop's chain edge goes again with the next seed;
+                  // if a loop passes twice through a point, a run that fails at all goes again, with such
+                  // holes closed lobe by lobe
     std::string why;
     double discarded = 0;
     const bool loops = !surface.boundary_loops().empty();  // a first run with loops keeps the background
+    const bool pinched = loops && has_pinched_loop(surface);
     Remeshed_surface out = run_again_if_a_loop_is_blocked(loops, [&](bool again) {
       Remeshing_options o = options;
       o.random_seed += again ? 1u : 0u;
       if(loops && !again) return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, o, vis, false, nullptr);
+      if(again && pinched) {
+        // loops through a point twice: the second run closes them lobe by lobe, from the start
+        o.split_pinched_loops = true;
+        Pipeline_start split = start_pipeline<Domain>(surface, metric, result, o, vis);
+        return finish_pipeline<Domain>(surface, metric, split, std::move(*split.itri), result, o, vis, false, nullptr);
+      }
       if(again) vis.on_stage_started(Stage::EDGE_LENGTHS);
       return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, o, vis, false, nullptr);
-    }, why, discarded);
+    }, why, discarded, pinched);
     result.crease_run = Crease_run::NONE;
     result.discarded_seconds += discarded;  // finish_pipeline() starts the result afresh: set after it
     result.reseeded = why;

@@ -69,6 +69,10 @@ struct Remeshing_options {
   double conformal_tolerance = defaults::conformal_tolerance;
   Planar_boundary planar_boundary = defaults::planar_boundary;
   Surface_optimization surface_optimization = defaults::surface_optimization;
+  // not a named parameter: true in the second run of run_again_if_a_loop_is_blocked() on an input whose
+  // loops pass twice through a point: its holes closed lobe by lobe (close_holes()), its loops' sites
+  // not keeping those points as corners (place_loop_sites())
+  bool split_pinched_loops = false;
 
   template <typename NamedParameters>
   static Remeshing_options from(const NamedParameters& np)

@@ -93,12 +93,16 @@ inline Loop_sites loop_sites_on_stretches(const std::vector<Loop_stretch>& stret
 }
 
 // Places the sites of every loop: its seam's background vertices in order, the loop's corners (input
-// vertices where the loop turns by more than `corner_angle_deg`) kept, and between two corners (or
+// vertices where the loop turns by more than `corner_angle_deg`; with `pinch_corners` false, none of the
+// two copies of a point where a loop split at its pinches passes twice, Hole_patches::pinch_vertices:
+// the sites at equal arc length then pass by it, as a scan's holes of removed triangles that meet at
+// vertices need, CGAL's elephant-with-holes, where a site on each copy let the output join the copies)
+// kept, and between two corners (or
 // around a loop without one) evenly spaced points at about `h` of metric arc length, each at the seam
 // vertex nearest in arc length (the seams are refined to a quarter of `h`). At least 3 sites a loop; in
 // all at most `budget` (the longest stretches lose sites first).
 inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Hole_patches& patches, double h, double corner_angle_deg,
-                                   std::size_t budget)
+                                   std::size_t budget, bool pinch_corners = true)
 {
   const std::size_t nl = patches.loops.size();
   std::vector<std::vector<int>> chain(nl);
@@ -115,6 +119,7 @@ inline Loop_sites place_loop_sites(const Intrinsic_triangulation& itri, const Ho
     for(std::size_t i = 0; i < c.size(); ++i) {
       if(itri.input_vertex(c[i]) < 0) continue;
       const std::size_t k = std::size_t(itri.seam_parameter(c[i]));
+      if(!pinch_corners && std::binary_search(patches.pinch_vertices.begin(), patches.pinch_vertices.end(), loop[k])) continue;
       const Eigen::Vector3d& p = patches.closed.points()[loop[(k + loop.size() - 1) % loop.size()]];
       const Eigen::Vector3d& v = patches.closed.points()[loop[k]];
       const Eigen::Vector3d& q = patches.closed.points()[loop[(k + 1) % loop.size()]];
@@ -245,16 +250,20 @@ constexpr const char* blocked_loop_reason = "a site came too close to the loop";
 // Convergence_failure of remove_patch_triangles()), runs `run(true)` once (the caller draws the CVT's
 // initial sites with the next seed: another CVT, whose sites leave the chain alone), with the first
 // failure's message in `why` and its wall time in `discarded`. Any other failure, or a second one, is
-// thrown on. (A repair of the dual, moving the blocking site off the chain, would spare the second CVT.)
+// thrown on; but with `any_failure` (an input whose loops pass twice through a point, whose second run
+// closes its holes otherwise) every Remeshing_failure of the first run leads to the second. (A repair of
+// the dual, moving the blocking site off the chain, would spare the second CVT.)
 template <typename Run>
-auto run_again_if_a_loop_is_blocked(bool loops, const Run& run, std::string& why, double& discarded) -> decltype(run(false))
+auto run_again_if_a_loop_is_blocked(bool loops, const Run& run, std::string& why, double& discarded, bool any_failure = false)
+  -> decltype(run(false))
 {
   if(!loops) return run(false);
   const auto t0 = std::chrono::steady_clock::now();
   try {
     return run(false);
-  } catch(const Convergence_failure& e) {
-    if(std::string(e.what()).find(blocked_loop_reason) == std::string::npos) throw;
+  } catch(const Remeshing_failure& e) {
+    if(!any_failure && (!dynamic_cast<const Convergence_failure*>(&e) || std::string(e.what()).find(blocked_loop_reason) == std::string::npos))
+      throw;
     why = e.what();
   }
   discarded = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
