@@ -329,7 +329,8 @@ BOOST_AUTO_TEST_CASE(plate_with_a_pinched_hole_keeps_its_loop_through_the_pinch_
 // The necklaces of 4 holes of one cell and of 3 of two cells. Measured here: G_avg 0.905-0.956,
 // theta_min 34.0-36.7. Three of the four cases (all but 3 beads at 600) are remeshed by the second run,
 // lobe by lobe: in the first, the single patch over the necklace made 8 to 16 triangles flat on the
-// sphere (the tool of 32a67b9 refused them).
+// sphere (the tool of 32a67b9 refused them with --domain sphere; its automatic choice fell back to
+// cones).
 BOOST_AUTO_TEST_CASE(plate_with_a_necklace_hole_keeps_its_loop)
 {
   for(const auto& bk : {std::array<int, 2>{{4, 1}}, std::array<int, 2>{{3, 2}}}) {
