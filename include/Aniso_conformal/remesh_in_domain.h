@@ -22,6 +22,7 @@
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
 #include <Aniso_conformal/internal/remesh/hole_patches.h>
 #include <Aniso_conformal/internal/remesh/loop_sites.h>
+#include <Aniso_conformal/internal/remesh/pipeline_start.h>
 #include <Aniso_conformal/internal/remesh/pipeline_steps.h>
 #include <Aniso_conformal/internal/stretch_limit.h>
 #include <Aniso_conformal/internal/visitor_helper.h>
@@ -47,21 +48,6 @@
 namespace Aniso_conformal {
 
 namespace internal {
-
-// What run_pipeline() computes once, whether the creases are then followed or not: the request checked,
-// the input's feature graph, the holes' patches (a surface with boundary loops in a closed domain), and
-// the background after stage 1 and the refinement of stage 2, before its creases are refined.
-struct Pipeline_start {
-  std::unique_ptr<const Hole_patches> patches;  // none in the plane or for a disk on the sphere
-  Feature_graph features;
-  std::optional<Intrinsic_triangulation> itri;  // metric_and_background()
-  Remeshing_result result;                      // the figures so far
-  double edge_lengths_seconds = 0;              // stage 2's seconds so far
-  std::size_t short_creases_dropped = 0;        // crease components shorter than an output edge, dropped
-  double short_crease_length_dropped = 0;       // their length (input units)
-  internal::Ragged_creases ragged_creases;      // the ragged crease components left out (ragged_creases.h)
-  const Input_surface& background(const Input_surface& surface) const { return patches ? patches->closed : surface; }
-};
 
 // The checks of the request, the feature graph, the patches, stage 1 and the refinement of stage 2 in
 // `Domain` (the caller's parameters read into values and its visitor behind a handle,
@@ -312,20 +298,6 @@ Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Fe
   return dual;
 }
 
-// The input's features (start.features) measured on the output `out` (Remeshing_result::features), the
-// time counted as the quality stage's
-inline void record_features(const Input_surface& surface, const Pipeline_start& start, const Remeshed_surface& out, Remeshing_result& result)
-{
-  const auto measure_start = std::chrono::steady_clock::now();
-  result.features = measure_features(surface, start.features, out.points, out.faces);
-  result.features.short_components_dropped = start.short_creases_dropped;
-  result.features.short_length_dropped = start.short_crease_length_dropped;
-  result.features.ragged_components_dropped = start.ragged_creases.components;
-  result.features.ragged_length_dropped = start.ragged_creases.length;
-  result.features.rough_surface = start.ragged_creases.rough;
-  result.seconds[int(Stage::QUALITY)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - measure_start).count();
-}
-
 // The pipeline from `start` (start_pipeline()) on its background `itri`: the rest of stage 2 (with
 // `follow_creases` the creases kept, crease_sites.h: with `crease_splits` their background pieces refined
 // first, the splits counted there; without it the crease sites on the background's own crease vertices),
@@ -416,19 +388,17 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
   const bool creases = !start.features.curves.empty();
-  if(!creases) {  // with loops, a run whose free site blocks a loop's chain edge goes again with the next seed;
-                  // if a loop passes twice through a point, a run that fails at all goes again, with such
-                  // holes closed lobe by lobe
+  if(!creases) {  // with loops, a run that fails at a loop goes again (run_again_if_a_loop_is_blocked())
     std::string why;
     double discarded = 0;
-    const bool loops = !surface.boundary_loops().empty();  // a first run with loops keeps the background
-    const bool pinched = loops && has_pinched_loop(surface);
+    // a first run with loops keeps the background; with a loop through a point twice, any failure of it
+    // leads to a second run whose holes are closed lobe by lobe, from the start
+    const bool loops = !surface.boundary_loops().empty(), pinched = loops && has_pinched_loop(surface);
     Remeshed_surface out = run_again_if_a_loop_is_blocked(loops, [&](bool again) {
       Remeshing_options o = options;
       o.random_seed += again ? 1u : 0u;
       if(loops && !again) return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, o, vis, false, nullptr);
       if(again && pinched) {
-        // loops through a point twice: the second run closes them lobe by lobe, from the start
         o.split_pinched_loops = true;
         Pipeline_start split = start_pipeline<Domain>(surface, metric, result, o, vis);
         return finish_pipeline<Domain>(surface, metric, split, std::move(*split.itri), result, o, vis, false, nullptr);
