@@ -55,8 +55,10 @@ namespace Aniso_conformal {
  *
  * **Voronoi cells.** Each chart integrates its own faces: its sites and copies of the sites of the faces
  * around it, brought into the chart by the rigid motions along a breadth-first search across the
- * transitions (a band as wide as three site spacings, widened until every Delaunay circle that matters
- * lies in it), give a CGAL Delaunay triangulation in the chart; the faces are clipped against the cells
+ * transitions (the faces within three site spacings of the chart's own triangles, a distance widened
+ * until every Delaunay circle that matters lies within it), give a Delaunay triangulation in the chart
+ * (CGAL's, or the last one moved and repaired by Lawson's flips when the chart holds the same sites'
+ * points as at the last integration); the faces are clipped against the cells
  * (`internal::integrate_restricted_voronoi()`) and each copy's integrals are moved back to its site's
  * frame. Around a cone the copies are kept on one sheet: no two copies' wedges at a cone overlap (modulo
  * `2 pi`), so a cone of angle below `2 pi` is seen from both sides and one above `2 pi` over a turn at most
@@ -175,6 +177,14 @@ public:
     for(const auto& b : m_band) k += b.size();
     return k;
   }
+  /// the charts' Delaunay triangulations that an integration repaired by flips (the chart held the same
+  /// sites' points as at the last one) and that it built anew, summed over every integration
+  std::pair<std::size_t, std::size_t> number_of_chart_triangulations() const
+  {
+    std::pair<std::size_t, std::size_t> n(0, 0);
+    for(const auto& k : m_kept) n.first += k.repairs, n.second += k.builds;
+    return n;
+  }
   /// the straight segments the sites walked, summed over every move (each crossing of a face counts once)
   std::size_t number_of_walk_steps() const { return m_walk_steps; }
   /// @}
@@ -244,6 +254,7 @@ public:
     }
     m_band.assign(m_chart.size(), {});
     m_band_width.assign(m_chart.size(), 0.0);
+    m_kept.assign(m_chart.size(), {});
     return sites;
   }
   /// 0: no site is fixed on a closed surface
@@ -367,7 +378,7 @@ public:
   std::vector<Chart_cells> voronoi_cells(const std::vector<Point>& sites) const
   {
     move_sites(sites);
-    const std::vector<Chart_points> charts = chart_points();
+    const std::vector<Chart_points> charts = chart_points(true);
     std::vector<Chart_cells> out(charts.size());
     for(std::size_t c = 0; c < charts.size(); ++c)
       out[c] = internal::cone_chart_cells(m_chart[c].faces, int(c), *m_emb, m_faces, m_twin, m_is_cone, charts[c], 1e3 * m_tolerance);
@@ -415,7 +426,8 @@ private:
 
 
   // The copies of the faces within `width` of chart c (beyond its own): a Dijkstra from the chart across
-  // the transitions by the distance of a copy's centroid to the chart's centre, keeping a copy only if it
+  // the transitions by the distance of a copy's centroid to the chart (internal::Cone_chart_distance, a
+  // grid over the chart's triangles built here for this width), keeping a copy only if it
   // overlaps no copy kept (nor the chart): the band is one sheet of the plane, so every distance in the
   // chart is the length of a path on the surface. Around a cone of angle below 2 pi the fan is copied as
   // often as it takes to go around once; around one above 2 pi, one turn of it is kept.
@@ -424,6 +436,8 @@ private:
     const Chart& chart = m_chart[c];
     std::vector<Face_copy>& band = m_band[c];
     band.clear();
+    internal::Cone_chart_distance& dist = m_distance[c];
+    dist.build(chart.tri, width);
     const double eps = m_tolerance;
     // the copies kept, in an R-tree of their bounding boxes (Boost.Geometry): copies differ in size by
     // orders of magnitude where the cone metric shrinks a region (a chart of two faces of area 4.5e-12 next
@@ -467,12 +481,13 @@ private:
         for(int j = 0; j < 3; ++j) q[std::size_t(j)] = m(m_emb->corner_uv[std::size_t(g)][std::size_t(j)]);
         const Eigen::Vector2d centroid = (q[0] + q[1] + q[2]) / 3.0;
         const double reach = std::max({(q[0] - centroid).norm(), (q[1] - centroid).norm(), (q[2] - centroid).norm()});
-        if((centroid - chart.center).norm() - reach > chart.radius + width) continue;
+        const double from_chart = dist.lower(centroid);
+        if(from_chart - reach > width) continue;
         if(overlaps(q)) continue;
         place(q);
         band.push_back({g, m});
         copies.push_back({g, m});
-        queue.push({(centroid - chart.center).norm(), copies.size() - 1});
+        queue.push({from_chart, copies.size() - 1});
         if(band.size() > bound)
           throw Convergence_failure("cone domain: the band of chart " + std::to_string(c) + " holds more than " + std::to_string(bound) +
                                         " face copies",
@@ -486,7 +501,9 @@ private:
   // surface with too few sites). A chart expecting less than one site starts from a band three times the
   // square root of its own area, far narrower than the cells around it: 8 widenings (a factor 43) left
   // CGAL's camel at 500 sites refused ("not complete within a band of width 0.0096"), which 12 remesh.
-  std::vector<Chart_points> chart_points() const
+  // Where a chart holds the same points as at the last call, its triangulation is repaired by flips
+  // (Cone_chart_kept_delaunay); `cgal_triangulations` builds each anew with CGAL, for the pictures.
+  std::vector<Chart_points> chart_points(bool cgal_triangulations = false) const
   {
     const std::size_t ns = m_state.size();
     std::vector<int> start(m_itri->number_of_faces() + 1, 0), list(ns);
@@ -500,10 +517,13 @@ private:
       m_band.assign(m_chart.size(), {});
       m_band_width.assign(m_chart.size(), 0.0);
     }
+    m_kept.resize(m_chart.size());
+    m_distance.resize(m_chart.size());
     std::vector<Chart_points> out(m_chart.size());
     internal::parallel_for_dynamic(m_chart_order, m_threads, [&](std::size_t c) {
       const Chart& chart = m_chart[c];
       Chart_points& cp = out[c];
+      internal::Cone_chart_kept_delaunay& kept = m_kept[c];
       if(m_band_width[c] == 0) {
         const double sites_here = std::max(1.0, double(ns) * chart.mass / m_total_mass);
         m_band_width[c] = 3 * std::sqrt(chart.area / sites_here);
@@ -525,8 +545,12 @@ private:
             cp.original.push_back(list[std::size_t(j)]);
             cp.motion.push_back(fc.motion);
           }
-        cp.dt.build(cp.points);
-        if(internal::chart_is_complete(chart, cp, m_band_width[c])) break;
+        // the last triangulation moved and repaired by flips where the chart holds the same sites' points, else CGAL's
+        if(cgal_triangulations || !kept.repair(cp, m_band_width[c])) {
+          cp.dt.build(cp.points);
+          kept.take(cp, m_band_width[c]);
+        }
+        if(internal::chart_is_complete(m_distance[c], cp, kept.flips, m_band_width[c])) break;
         if(attempt == max_widenings)
           throw Convergence_failure("cone domain: the Voronoi cells of chart " + std::to_string(c) + " are not complete within a band of width " +
                                         std::to_string(m_band_width[c]) + " (too few sites for the surface)",
@@ -534,7 +558,12 @@ private:
         m_band_width[c] *= 1.6;
         build_band(c, m_band_width[c]);
       }
-      internal::delaunay_neighbours(cp.dt.dt, cp.dt.handle, cp.start, cp.nbr);
+      if(kept.flips.valid())
+        kept.flips.neighbours(cp.start, cp.nbr);
+      else
+        internal::delaunay_neighbours(cp.dt.dt, cp.dt.handle, cp.start, cp.nbr);
+      // each point's neighbours in index order, so that the integrals do not depend on how the triangulation was made
+      for(std::size_t i = 0; i + 1 < cp.start.size(); ++i) std::sort(cp.nbr.begin() + cp.start[i], cp.nbr.begin() + cp.start[i + 1]);
     });
     return out;
   }
@@ -551,6 +580,8 @@ private:
   mutable std::vector<Site_state> m_state;
   mutable std::vector<std::vector<Face_copy>> m_band;
   mutable std::vector<double> m_band_width;
+  mutable std::vector<internal::Cone_chart_distance> m_distance;  // to each chart, within its band's width (build_band())
+  mutable std::vector<internal::Cone_chart_kept_delaunay> m_kept;  // each chart's last triangulation (chart_points())
   mutable std::size_t m_walk_steps = 0;
   mutable internal::Cone_surface_delaunay::Statistics m_dual_statistics;
   mutable std::vector<internal::Cone_surface_delaunay::Moved_point> m_moved;  // by the last dual_triangles()

@@ -338,7 +338,10 @@ Cone_embedding cone_embedding(Intrinsic_triangulation& itri, const NamedParamete
   std::vector<char> is_cone(itri.number_of_vertices(), 0);
   for(int c : emb.cones) is_cone[std::size_t(c)] = 1;
   emb.flat_area = internal::scaled_area(itri, emb.u);
-  // a chart holds about 64 output cells: its band of copies is then about twice its own sites
+  // a chart holds about 64 output cells; its band of copies then holds four to five times its own sites
+  // (cow, 3000 sites: 16k points in 89 charts). Larger charts need fewer copies but change their points
+  // (and are triangulated anew) at more of the CVT's evaluations, and came out worse (cow: 256 cells, 39
+  // charts, 12.6k points, G_avg 0.9319; 1024 cells, 17 charts, 9.5k points, 0.9274; 64 cells: 0.9347)
   const std::size_t n = std::max<std::size_t>(1, internal::number_of_vertices(np));
   internal::grow_cone_charts(itri, emb.u, is_cone, 64.0 * internal::scaled_area(itri, std::vector<double>(emb.u.size(), 0.0)) / double(n), emb);
   return emb;

@@ -154,7 +154,15 @@ public:
   bool valid() const { return m_valid; }
   std::size_t number_of_triangles() const { return m_mesh.tri.size(); }
   const std::array<int, 3>& triangle(std::size_t t) const { return m_mesh.tri[t]; }
+  // the triangle across the edge of triangle t opposite its corner k, or -1 on the boundary (the convex hull in the plane)
+  int across(std::size_t t, int k) const { return m_mesh.adj[t][std::size_t(k)]; }
   std::size_t last_flips() const { return m_last_flips; }
+  // renames vertex i of every triangle new_of_old[i] (a permutation of the sites)
+  void relabel(const std::vector<int>& new_of_old)
+  {
+    for(auto& t : m_mesh.tri)
+      for(int& v : t) v = new_of_old[std::size_t(v)];
+  }
   // the Delaunay neighbours of every site in CSR form (neighbours of i: nbr[start[i] .. start[i+1]))
   void neighbours(std::vector<int>& start, std::vector<int>& nbr) const { m_mesh.neighbours(m_sites, start, nbr); }
 
