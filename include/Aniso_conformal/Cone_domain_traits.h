@@ -92,7 +92,9 @@ public:
   /// a shortened step: the energy on the cone surface jumps by about 1e-8 where a site crosses a seam of
   /// a chart's band (one sheet around each cone), so the extra halvings find no descent and only cost
   /// energy evaluations (cow, 3000 sites: 434 evaluations per 100 iterations with 12, 217 with 4;
-  /// benchmark/cones.md).
+  /// benchmark/cones.md). Declaring it also makes the line search non-monotone over the first four fifths
+  /// of the iterations (a step is compared with the largest of the last 10 energies; see
+  /// `weighted_centroidal_Voronoi_tessellation()`): 163 evaluations on that cow since stop 63.
   static constexpr int line_search_halvings = 4;
 
   /// \name Creation
