@@ -123,7 +123,6 @@ public:
       std::vector<int> faces;
       for(std::size_t i : order) faces.push_back(c.faces[i]);
       c.faces = faces;
-      c.center = 0.5 * (lo + hi);
       for(std::size_t i = 0; i < c.faces.size(); ++i) {
         const int f = c.faces[i];
         m_slot[std::size_t(f)] = i;
@@ -133,7 +132,6 @@ public:
         for(int k = 0; k < 3; ++k) {
           const double cf = emb.conformal_factor[std::size_t(v[std::size_t(k)])];
           rho[std::size_t(k)] = cf * cf;
-          c.radius = std::max(c.radius, (p[std::size_t(k)] - c.center).norm());
           longest = std::max(longest, (p[std::size_t(k)] - p[std::size_t((k + 1) % 3)]).norm());
         }
         if(itri.is_patch_face(std::size_t(f))) rho = {{0.0, 0.0, 0.0}};  // a hole's patch holds no site

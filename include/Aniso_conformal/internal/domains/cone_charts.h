@@ -34,8 +34,7 @@ struct Cone_chart {
   std::vector<int> faces;  // in Morton order
   std::vector<Background_triangle> tri;
   Triangle_grid grid;
-  Eigen::Vector2d center = Eigen::Vector2d::Zero();
-  double radius = 0, mass = 0, area = 0;
+  double mass = 0, area = 0;
 };
 struct Cone_face_copy {
   int face;
