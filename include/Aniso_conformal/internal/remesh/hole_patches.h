@@ -41,20 +41,20 @@
 #include <vector>
 
 // Surfaces with boundary loops in the closed domains (issue 15, item 3). Each hole is closed by a virtual
-// patch, a cone from a new apex vertex to the loop (or, where that cone would fold over itself, a fill
-// by Liepa's method, close_holes()), so that the surface becomes closed of the same genus
-// and goes to the sphere, the flat torus or the hyperbolic disk as a closed surface does; the input is
-// never modified. In the second run after a failed one (remesh_in_domain.h, run_pipeline()), a loop that
-// passes twice through one point (a pinch) is cut there into pieces joined by a bridge vertex, each
-// closed by its own patch (split_loop_at_pinches(), close_pinched_loop()).
-// In the background (Intrinsic_triangulation) the patch's faces carry no CVT density and
-// each loop is a seam whose edges are never flipped; sites are fixed along every seam at about equal
-// metric arc length (their number from the loop's metric length and the output edge length, as the
-// plane places the boundary sites of a disk), at background vertices on the seam, so that they map back
-// exactly onto the input loop (loop_sites.h). The dual triangles on the patch side of each loop's chain of sites are
-// removed, and what is left is checked: every loop's consecutive sites joined by an output edge (where the
-// dual did not join two, the edge is recovered by flips first, recover_loop_edges()), no site
-// inside a patch (then the genus and the number of loops are checked with the rest of the output).
+// patch, a cone from a new apex vertex to the loop (or, where that cone would fold over itself, a fill by
+// Liepa's method, close_holes()), so that the surface becomes closed of the same genus and goes to the
+// sphere, the flat torus or the hyperbolic disk as a closed surface does; the input is never modified. In
+// the second run after a failed one (remesh_in_domain.h, run_pipeline()), a loop that passes twice
+// through one point (a pinch) is cut there into pieces joined by a bridge vertex, each closed by its own
+// patch (split_loop_at_pinches(), close_pinched_loop()). In the background (Intrinsic_triangulation) the
+// patch's faces carry no CVT density and each loop is a seam whose edges are never flipped; sites are
+// fixed along every seam at about equal metric arc length (their number from the loop's metric length
+// and the output edge length, as the plane places the boundary sites of a disk), at background vertices
+// on the seam, so that they map back exactly onto the input loop (loop_sites.h). The dual triangles on
+// the patch side of each loop's chain of sites are removed, and what is left is checked: every loop's
+// consecutive sites joined by an output edge (where the dual did not join two, the edge is recovered by
+// flips first, recover_loop_edges()), no site inside a patch (then the genus and the number of loops are
+// checked with the rest of the output).
 
 namespace Aniso_conformal {
 namespace internal {
@@ -181,6 +181,15 @@ inline std::size_t farthest_from_loop(std::size_t first, std::size_t count, cons
   return apex;
 }
 
+// per position of `loop` (over `points`), the shorter of its two loop edges
+inline std::vector<double> shorter_loop_edges(const std::vector<std::size_t>& loop, const std::vector<Eigen::Vector3d>& points)
+{
+  std::vector<double> shortest(loop.size());
+  for(std::size_t i = 0, n = loop.size(); i < n; ++i)
+    shortest[i] = std::min((points[loop[i]] - points[loop[(i + 1) % n]]).norm(), (points[loop[i]] - points[loop[(i + n - 1) % n]]).norm());
+  return shortest;
+}
+
 // The pinches of a loop (`loop` over `points`): the pairs of its vertices at one point, or closer than
 // a tenth of the shorter loop edge at either, at least two loop edges apart both ways round; found by a
 // sweep along x, O(n log n) for a loop of n vertices without any
@@ -189,9 +198,7 @@ inline std::vector<std::pair<std::size_t, std::size_t>> pinch_pairs(const std::v
   const std::size_t n = loop.size();
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   if(n < 6) return pairs;
-  std::vector<double> shortest(n);  // per position, its shorter loop edge
-  for(std::size_t i = 0; i < n; ++i)
-    shortest[i] = std::min((points[loop[i]] - points[loop[(i + 1) % n]]).norm(), (points[loop[i]] - points[loop[(i + n - 1) % n]]).norm());
+  const std::vector<double> shortest = shorter_loop_edges(loop, points);
   const double reach = 0.1 * *std::max_element(shortest.begin(), shortest.end());
   std::vector<std::size_t> order(n);
   for(std::size_t i = 0; i < n; ++i) order[i] = i;
@@ -213,20 +220,19 @@ inline bool has_pinched_loop(const Input_surface& s)
   return false;
 }
 
-// A loop that passes twice through a point (a pinch: two loop vertices at the same point, or closer
-// than a tenth of their shortest loop edge, as where two holes of a scan touch at a corner) cut into
-// pieces, each to be closed by its own patch: repeatedly, the pinch pair (x, x') whose shorter side of
-// the loop is shortest is cut off as a lobe (x ... x', b) by a new bridge vertex b, and the rest of the
-// loop goes (... x, b, x' ...), so that the patches of the two sides meet along the path x - b - x' and
-// the two copies of the point are two edges apart in the closed surface, not joined through one patch
-// (a patch over the whole loop put a copy one patch edge from the other copy's loop neighbours: CGAL's
-// elephant-with-holes, benchmark/boundaries.md). Each bridge adds a vertex, two edges and a face, so
-// the closed surface keeps the input's genus. The bridge vertex is put at `points`' end, above the pinch
-// (along -`up`, where the patches go) by the mean length of the four loop edges at x and x', and
-// recorded in `patch_vertices` (its metric isotropic, Patched_metric); the two copies of each pinch are
-// appended to `pinch_vertices`. Returns the pieces (vertices of the closed surface, in the loop's
-// orientation); the loop itself if it has no pinch. Time O(n log n) for a loop of n vertices without
-// a pinch, O(n p^2) with p pinches.
+// A loop that passes twice through a point (a pinch: two loop vertices at the same point, or closer than a
+// tenth of their shortest loop edge, as where two holes of a scan touch at a corner) cut into pieces, each to
+// be closed by its own patch: repeatedly, the pinch pair (x, x') whose shorter side of the loop is shortest is
+// cut off as a lobe (x ... x', b) by a new bridge vertex b, and the rest of the loop goes (... x, b, x' ...),
+// so that the patches of the two sides meet along the path x - b - x' and the two copies of the point are two
+// edges apart in the closed surface, not joined through one patch (a patch over the whole loop put a copy one
+// patch edge from the other copy's loop neighbours: CGAL's elephant-with-holes, benchmark/boundaries.md). Each
+// bridge adds a vertex, two edges and a face, so the closed surface keeps the input's genus. The bridge vertex
+// is put at `points`' end, above the pinch (along -`up`, where the patches go) by the mean length of the four
+// loop edges at x and x', and recorded in `patch_vertices` (its metric isotropic, Patched_metric); the two
+// copies of each pinch are appended to `pinch_vertices`. Returns the pieces (vertices of the closed surface,
+// in the loop's orientation); the loop itself if it has no pinch. Time O(n log n) for a loop of n vertices
+// without a pinch, O(n p^2) with p pinches.
 inline std::vector<std::vector<std::size_t>> split_loop_at_pinches(const std::vector<std::size_t>& loop, std::size_t l, const Eigen::Vector3d& up,
                                                                    std::vector<Eigen::Vector3d>& points,
                                                                    std::vector<Patch_vertex>& patch_vertices,
@@ -235,9 +241,7 @@ inline std::vector<std::vector<std::size_t>> split_loop_at_pinches(const std::ve
   const std::size_t n = loop.size();
   const std::vector<std::pair<std::size_t, std::size_t>> pairs = pinch_pairs(loop, points);
   if(pairs.empty()) return {loop};
-  std::vector<double> shortest(n);  // per position, its shorter loop edge
-  for(std::size_t i = 0; i < n; ++i)
-    shortest[i] = std::min((points[loop[i]] - points[loop[(i + 1) % n]]).norm(), (points[loop[i]] - points[loop[(i + n - 1) % n]]).norm());
+  const std::vector<double> shortest = shorter_loop_edges(loop, points);
   std::map<std::size_t, std::size_t> position;  // loop vertex -> its position in `loop`
   for(std::size_t i = 0; i < n; ++i) position[loop[i]] = i;
   std::vector<std::vector<std::size_t>> pieces;
