@@ -633,6 +633,9 @@ BOOST_AUTO_TEST_CASE(the_cow_with_its_noisy_creases_remeshes_without_crease_site
   // creases stands (measured G_avg 0.922, theta_min 21.5), where every run with feature sites failed before
   BOOST_TEST((r.crease_run == AC::Crease_run::NOT_FOLLOWED));
   BOOST_TEST(!r.creases_not_followed.empty());
+  // a failed run with crease sites had embedded this run's background, edge lengths and all: taken, not
+  // solved again (internal/remesh/embedding_memo.h)
+  BOOST_TEST(r.embedding_reused);
   BOOST_TEST(r.features.corners > 100u);  // the input's, measured on the output
   BOOST_TEST(r.discarded_seconds > 0);
   BOOST_TEST(out.points.size() == n);

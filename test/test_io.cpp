@@ -383,6 +383,14 @@ BOOST_AUTO_TEST_CASE(report_and_svg_writers)
   BOOST_TEST(j.at("edge_adjustment").at("splits") == 7);
   BOOST_TEST(j.at("edge_adjustment").at("flips") == 3);
   BOOST_TEST(j.at("conformal_embedding").at("intrinsic_flips") == 5);
+  BOOST_TEST(!j.at("conformal_embedding").contains("reused"));  // written only when an earlier run's embedding was taken
+  {
+    AC::Remeshing_result reused = r;
+    reused.embedding_reused = true;
+    std::ostringstream o;
+    AC::IO::write_report_json(o, reused);
+    BOOST_TEST(nlohmann::json::parse(o.str()).at("conformal_embedding").at("reused") == true);
+  }
   BOOST_TEST(j.at("cvt").at("energy").size() == 3u);
   BOOST_TEST(j.at("cvt").at("iterations") == 3);
   BOOST_TEST(j.at("seconds").size() == std::size_t(AC::number_of_stages) + 2);  // the stages, discarded and total

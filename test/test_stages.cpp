@@ -38,6 +38,8 @@
 #include <Aniso_conformal/IO/read_triangle_mesh.h>
 #include <Aniso_conformal/internal/domains/indexed_delaunay_2.h>
 #include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
+#include <Aniso_conformal/internal/remesh/embedding_memo.h>
+#include <Aniso_conformal/Spherical_domain.h>
 
 #include "mesh_checks.h"
 
@@ -289,6 +291,103 @@ BOOST_AUTO_TEST_CASE(embeddings_refuse_a_background_without_edge_lengths)
   refused(AC::IO::read_triangle_mesh(std::string(ANISO_CONFORMAL_DATA_DIR) + "/meshes/eight_1k.off"),
           [](auto& t) { AC::hyperbolic_embedding(t); });
   refused(AC::make_ellipsoid(2), [](auto& t) { AC::cone_embedding(t, AC::parameters::number_of_vertices(std::size_t(100))); });
+}
+
+// The fingerprint of a background tells equal states from different ones: a copy has it, a flip or
+// other edge lengths change it
+BOOST_AUTO_TEST_CASE(an_intrinsic_triangulations_fingerprint_changes_with_its_state)
+{
+  const AC::Input_surface s = AC::make_ellipsoid(2);
+  AC::Intrinsic_triangulation itri(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(itri);
+  const AC::Intrinsic_triangulation copy = itri;
+  BOOST_TEST(copy.fingerprint() == itri.fingerprint());
+  AC::Intrinsic_triangulation flipped = itri;
+  flipped.flip(0);
+  BOOST_TEST(flipped.fingerprint() != itri.fingerprint());
+  std::vector<Eigen::Vector3d> points = s.points();
+  for(Eigen::Vector3d& p : points) p *= 2;  // same connectivity, other lengths
+  const AC::Input_surface big(points, s.faces());
+  AC::Intrinsic_triangulation scaled(big, AC::compute_metric_square_roots(big, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(scaled);
+  BOOST_TEST(scaled.fingerprint() != itri.fingerprint());
+}
+
+namespace {
+// a domain whose embedding counts its calls and fails (a Convergence_failure) when `fail` is set
+struct Counting_domain {
+  typedef std::size_t Embedding;
+  static inline std::size_t calls = 0;
+  static inline bool fail = false;
+  template <typename NP>
+  static Embedding embed(AC::Intrinsic_triangulation& itri, const NP&)
+  {
+    ++calls;
+    if(fail) throw AC::Convergence_failure("the counting domain fails", 1.0);
+    itri.flip(0);  // an embedding may flip edges: the memo gives the background as it left it
+    return itri.number_of_faces() + calls;
+  }
+};
+} // namespace
+
+// The pipeline's runs on one background share its conformal embedding (internal/remesh/embedding_memo.h):
+// the same background is embedded once, its failure thrown again without a solve, another background
+// embedded anew; with `keep` false nothing new is kept
+BOOST_AUTO_TEST_CASE(the_embedding_memo_solves_each_background_once)
+{
+  const AC::Input_surface s = AC::make_ellipsoid(2);
+  AC::Intrinsic_triangulation itri(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+  AC::compute_metric_edge_lengths(itri);
+  const auto np = AC::parameters::number_of_vertices(std::size_t(100));
+  {  // the sphere: the same embedding, and the same background after it
+    AC::internal::Embedding_memo<AC::Spherical_domain> memo;
+    AC::Intrinsic_triangulation a = itri, b = itri;
+    bool reused = true;
+    const AC::Spherical_embedding ea = memo.embed(a, np, reused);
+    BOOST_TEST(!reused);
+    const AC::Spherical_embedding eb = memo.embed(b, np, reused);
+    BOOST_TEST(reused);
+    BOOST_TEST(a.fingerprint() == b.fingerprint());
+    BOOST_TEST(ea.position.size() == itri.number_of_vertices());
+    BOOST_TEST((ea.position == eb.position));
+    BOOST_TEST((ea.conformal_factor == eb.conformal_factor));
+  }
+  Counting_domain::calls = 0;
+  Counting_domain::fail = false;
+  AC::internal::Embedding_memo<Counting_domain> memo;
+  AC::Intrinsic_triangulation a = itri, b = itri;
+  bool reused = true;
+  const std::size_t ea = memo.embed(a, np, reused);
+  BOOST_TEST(!reused);
+  BOOST_TEST(memo.embed(b, np, reused) == ea);
+  BOOST_TEST(reused);
+  BOOST_TEST(Counting_domain::calls == 1u);
+  BOOST_TEST(b.fingerprint() == a.fingerprint());  // flipped as the embedding left it
+  BOOST_TEST(b.fingerprint() != itri.fingerprint());
+  // another background: embedded anew; a failure is kept and thrown again without a call
+  Counting_domain::fail = true;
+  AC::Intrinsic_triangulation c = a;
+  BOOST_CHECK_THROW(memo.embed(c, np, reused), AC::Convergence_failure);
+  BOOST_TEST(Counting_domain::calls == 2u);
+  AC::Intrinsic_triangulation d = a;
+  std::string message;
+  try {
+    memo.embed(d, np, reused);
+  } catch(const AC::Convergence_failure& e) {
+    message = e.what();
+  }
+  BOOST_TEST(reused);
+  BOOST_TEST(message == "the counting domain fails");
+  BOOST_TEST(Counting_domain::calls == 2u);
+  // not kept: the next call on the same background solves again
+  Counting_domain::fail = false;
+  memo.keep = false;
+  AC::Intrinsic_triangulation e = itri, f = itri;
+  memo.embed(e, np, reused);
+  BOOST_TEST(!reused);
+  memo.embed(f, np, reused);
+  BOOST_TEST(!reused);
+  BOOST_TEST(Counting_domain::calls == 4u);
 }
 
 BOOST_AUTO_TEST_CASE(curvature_metric_realises_the_table_2_stretch_on_the_cyclide)

@@ -225,10 +225,11 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 q.edge_length_mean, q.edge_length_stddev, q.edge_length_min, q.edge_length_max);
     std::printf("stretch      metric stretch at the vertices min %.2f, median %.2f, 95%% %.2f, max %.2f\n",
                 q.stretch_min, q.stretch_median, q.stretch_p95, q.stretch_max);
-    std::printf("stages       flips %zu, splits %zu, repaired %zu, Newton %zu (residual %.2g, %zu intrinsic flips), "
+    std::printf("stages       flips %zu, splits %zu, repaired %zu, Newton %zu (residual %.2g, %zu intrinsic flips%s), "
                 "CVT %zu iterations (%s)\n",
                 result.adjustment.flips, result.adjustment.splits, result.adjustment.repaired_triangles,
-                result.conformal_iterations, result.conformal_residual, result.conformal_flips, result.cvt.iterations,
+                result.conformal_iterations, result.conformal_residual, result.conformal_flips,
+                result.embedding_reused ? "; the embedding of an earlier run on this background" : "", result.cvt.iterations,
                 o.cvt.c_str());
     const AC::Surface_optimization_report& so = result.surface_optimization;
     if(so.ran)

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -308,6 +309,42 @@ public:
 
   /// \name Checks
   /// @{
+
+  /// a 64-bit hash (FNV-1a) of the whole state, bit for bit: vertices (surface points, metric tensors,
+  /// input vertices, corners, angle sums, seams), faces, twins, edge lengths and patches. Equal
+  /// triangulations have equal fingerprints; the pipeline's runs reuse a conformal embedding computed from
+  /// a background with the same fingerprint (internal/remesh/embedding_memo.h)
+  std::uint64_t fingerprint() const
+  {
+    std::uint64_t h = 14695981039346656037ULL;
+    auto bytes = [&h](const void* data, std::size_t size) {
+      const unsigned char* c = static_cast<const unsigned char*>(data);
+      for(std::size_t i = 0; i < size; ++i) h = (h ^ c[i]) * 1099511628211ULL;
+    };
+    auto array = [&](const auto& v) {
+      const std::uint64_t n = v.size();
+      bytes(&n, sizeof n);
+      if(!v.empty()) bytes(v.data(), v.size() * sizeof(v[0]));
+    };
+    for(const Surface_point& p : m_points) {
+      bytes(p.position.data(), 3 * sizeof(double));
+      bytes(p.vertices.data(), 3 * sizeof(std::size_t));
+      bytes(p.barycentric.data(), 3 * sizeof(double));
+    }
+    for(const Eigen::Matrix3d& q : m_Q) bytes(q.data(), 9 * sizeof(double));
+    array(m_input_vertex);
+    array(m_corner);
+    array(m_input_angle_sum);
+    array(m_faces);
+    array(m_twin);
+    array(m_length);
+    array(m_out);
+    array(m_seam);
+    array(m_seam_t);
+    array(m_seam_size);
+    array(m_patch);
+    return h;
+  }
 
   /// throws `Internal_error` if an invariant is broken (twins, orientation, vertex halfedges, lengths if `with_lengths`)
   void validate(bool with_lengths = false) const

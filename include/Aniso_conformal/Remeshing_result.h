@@ -127,6 +127,10 @@ struct Remeshing_result {
   Edge_adjustment_report adjustment;               ///< flips and splits of stage 2
   std::size_t conformal_iterations = 0;            ///< Newton iterations of stage 3
   double conformal_residual = 0;                   ///< max angle-sum error at the end of stage 3 (radians)
+  /// `true` if stage 3 was not solved in this run: an earlier run of the same call (one that followed
+  /// the creases, or the first run at a boundary loop) had embedded the same background, edge lengths and
+  /// all, and its embedding was taken; the figures above are its (internal/remesh/embedding_memo.h)
+  bool embedding_reused = false;
   std::size_t conformal_flips = 0;                 ///< intrinsic Delaunay flips made during stage 3
   double conformal_factor_min = 0;                 ///< smallest conformal factor
   double conformal_factor_max = 0;                 ///< largest conformal factor

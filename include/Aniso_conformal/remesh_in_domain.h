@@ -20,6 +20,7 @@
 #include <Aniso_conformal/internal/features/ragged_creases.h>
 #include <Aniso_conformal/internal/parameter_defaults.h>
 #include <Aniso_conformal/internal/remesh/canonical_parameters.h>
+#include <Aniso_conformal/internal/remesh/embedding_memo.h>
 #include <Aniso_conformal/internal/remesh/hole_patches.h>
 #include <Aniso_conformal/internal/remesh/loop_sites.h>
 #include <Aniso_conformal/internal/remesh/pipeline_start.h>
@@ -306,7 +307,8 @@ Remeshed_surface planar_dual_with_creases(const Input_surface& surface, const Fe
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface finish_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, const Pipeline_start& start,
                                  Intrinsic_triangulation itri, Remeshing_result& result, const Remeshing_options& options,
-                                 Visitor_handle& vis, bool follow_creases, std::size_t* crease_splits)
+                                 Visitor_handle& vis, bool follow_creases, std::size_t* crease_splits,
+                                 Embedding_memo<Domain>* memo = nullptr)
 {
   const auto np = canonical_parameters(options, vis);
   const std::size_t n = options.number_of_vertices;
@@ -325,8 +327,10 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
 
   // 3. conformal embedding, 4. weighted CVT, 5. dual mesh, in the domain
   Stage_timer t3(vis, Stage::EMBEDDING);
-  const typename Domain::Embedding emb = Domain::embed(itri, np);
+  bool reused = false;  // the embedding of an earlier run on this background (embedding_memo.h)
+  const typename Domain::Embedding emb = memo ? memo->embed(itri, np, reused) : Domain::embed(itri, np);
   record_embedding(emb, result);
+  result.embedding_reused = reused;
   result.seconds[int(Stage::EMBEDDING)] = t3.stop(vis);
   const auto setup_start = std::chrono::steady_clock::now();  // the CVT's set-up counts as CVT time
   std::size_t apexes = 0;  // the patches' apex sites on the sphere, set by closed_domain_dual()
@@ -381,13 +385,16 @@ Remeshed_surface finish_pipeline(const Input_surface& surface, const Anisotropic
 //    or, in the plane or without corners, its failure;
 // 4. in a closed domain, if run 3 fails: the run without any feature site (Remeshing_result::
 //    corners_not_kept says why run 3 failed), whose result stands, or run 3's failure.
-// Remeshing_result::crease_run says which run stood.
+// Remeshing_result::crease_run says which run stood. A run whose stage 2 gives the background an earlier
+// run embedded (runs 2 to 4 mostly, and a boundary loop's second run) takes that embedding, or its failure
+// (embedding_memo.h).
 template <typename Domain, typename AnisotropicMetric>
 Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMetric& metric, Remeshing_result& result,
                               const Remeshing_options& options, Visitor_handle& vis)
 {
   Pipeline_start start = start_pipeline<Domain>(surface, metric, result, options, vis);
   const bool creases = !start.features.curves.empty();
+  Embedding_memo<Domain> memo;  // the runs on one background share its embedding
   if(!creases) {  // with loops, a run that fails at a loop goes again (run_again_if_a_loop_is_blocked())
     std::string why;
     double discarded = 0;
@@ -397,14 +404,15 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
     Remeshed_surface out = run_again_if_a_loop_is_blocked(loops, [&](bool again) {
       Remeshing_options o = options;
       o.random_seed += again ? 1u : 0u;
-      if(loops && !again) return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, o, vis, false, nullptr);
+      if(loops && !again) return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, o, vis, false, nullptr, &memo);
       if(again && pinched) {
         o.split_pinched_loops = true;
         Pipeline_start split = start_pipeline<Domain>(surface, metric, result, o, vis);
         return finish_pipeline<Domain>(surface, metric, split, std::move(*split.itri), result, o, vis, false, nullptr);
       }
       if(again) vis.on_stage_started(Stage::EDGE_LENGTHS);
-      return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, o, vis, false, nullptr);
+      memo.keep = false;
+      return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, o, vis, false, nullptr, again ? &memo : nullptr);
     }, why, discarded, pinched);
     result.crease_run = Crease_run::NONE;
     result.discarded_seconds += discarded;  // finish_pipeline() starts the result afresh: set after it
@@ -438,20 +446,22 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
     if(run == Crease_run::INPUT_VERTICES) result.crease_refinement_failed = reason;
     return std::move(out);
   };
-  if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits); }, &reason, nullptr))
+  if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, &splits, &memo); }, &reason, nullptr))
     return stood(std::move(*out), Crease_run::REFINED);
   if(splits > 0) {
     vis.on_stage_started(Stage::EDGE_LENGTHS);  // the retry begins in stage 2, after the refinement
-    if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr); }, nullptr, nullptr))
+    if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, true, nullptr, &memo); }, nullptr, nullptr))
       return stood(std::move(*out), Crease_run::INPUT_VERTICES);
   }
   vis.on_stage_started(Stage::EDGE_LENGTHS);
   constexpr bool closed = Domain::kind != Parametric_domain::PLANE;
-  if(!closed || start.features.corners.empty())
-    return stood(finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr), Crease_run::NOT_FOLLOWED);
+  if(!closed || start.features.corners.empty()) {
+    memo.keep = false;
+    return stood(finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr, &memo), Crease_run::NOT_FOLLOWED);
+  }
   std::string corners_reason;
   std::exception_ptr corners_failure;  // rethrown, type and all, if the run without feature sites fails too
-  if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, false, nullptr); }, &corners_reason, &corners_failure))
+  if(auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, *start.itri, result, options, vis, false, nullptr, &memo); }, &corners_reason, &corners_failure))
     return stood(std::move(*out), Crease_run::NOT_FOLLOWED);
   // 4. in a closed domain, the run without any feature site: three corners half an output edge apart can
   // make a triangle that the surface optimisation, which moves no fixed vertex, cannot turn back (CGAL's
@@ -459,7 +469,8 @@ Remeshed_surface run_pipeline(const Input_surface& surface, const AnisotropicMet
   vis.on_stage_started(Stage::EDGE_LENGTHS);
   Feature_graph features;
   std::swap(features, start.features);
-  auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr); },
+  memo.keep = false;
+  auto out = attempt([&] { return finish_pipeline<Domain>(surface, metric, start, std::move(*start.itri), result, options, vis, false, nullptr, &memo); },
                      nullptr, nullptr);
   std::swap(features, start.features);
   if(!out) std::rethrow_exception(corners_failure);

@@ -146,7 +146,7 @@ inline void add_metric_adjustments(const Remeshing_result& r, nlohmann::json& j)
  * `edge_adjustment` (flips, splits, rounds, repairs); `surface_optimization`, only if that stage ran
  * (`Surface_optimization_report`: rounds, flips, relocations, fixed and sliding vertices, inverted triangles and
  * G_min, G_avg, theta_min, %<30 before and after it);
- * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range,
+ * `conformal_embedding` (Newton iterations, residual in radians, intrinsic flips, conformal factor range, `reused` when an earlier run's embedding of the same background was taken,
  * and the domain's own figures from `r.domain_diagnostics`, written generically: a scalar, a vector or a
  * matrix as rows); `cvt` (method, iterations, energy per iteration); `seconds` (wall time per stage of the
  * run that stood, `discarded`: the runs thrown away, failed crease runs and the topology's own domain
@@ -225,6 +225,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                {"intrinsic_flips", r.conformal_flips},
                {"conformal_factor_min", report_number(r.conformal_factor_min)},
                {"conformal_factor_max", report_number(r.conformal_factor_max)}};
+  if(r.embedding_reused) embedding["reused"] = true;  // solved by an earlier run on the same background
   for(const Domain_figure& f : r.domain_diagnostics.figures) embedding[f.key] = internal::domain_figure(f);
   j["cvt"] = {{"method", r.cvt.method == Cvt_method::LLOYD ? "lloyd" : "lbfgs"},
               {"iterations", r.cvt.iterations},
