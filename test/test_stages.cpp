@@ -313,6 +313,34 @@ BOOST_AUTO_TEST_CASE(an_intrinsic_triangulations_fingerprint_changes_with_its_st
   BOOST_TEST(scaled.fingerprint() != itri.fingerprint());
 }
 
+// has_edge() (one walk around a vertex) agrees with find_halfedge() on every ordered vertex pair of a
+// closed surface and of a disk (boundary vertices: the walk goes both ways from the vertex's halfedge),
+// also after flips
+BOOST_AUTO_TEST_CASE(has_edge_agrees_with_find_halfedge)
+{
+  for(const AC::Input_surface& s : {AC::make_ellipsoid(1), AC::make_square_background(AC::Uniform_metric(), 60)}) {
+    AC::Intrinsic_triangulation itri(s, AC::compute_metric_square_roots(s, AC::Uniform_metric()));
+    std::size_t interior_flips = 0;
+    for(int round = 0; round < 2; ++round) {
+      const int nv = int(itri.number_of_vertices());
+      std::size_t edges = 0, disagreements = 0;
+      for(int a = 0; a < nv; ++a)
+        for(int b = 0; b < nv; ++b) {
+          const bool has = itri.has_edge(a, b);
+          edges += has;
+          disagreements += has != (itri.find_halfedge(a, b) >= 0);
+        }
+      BOOST_TEST(disagreements == 0u);
+      BOOST_TEST(edges == itri.number_of_halfedges());  // a pair per halfedge (a boundary edge: from its tail only)
+      for(int h = 0; h < int(itri.number_of_halfedges()) && interior_flips < 10u * (round + 1); h += 7)
+        if(itri.twin(h) >= 0 && !itri.has_edge(itri.opposite_vertex(h), itri.opposite_vertex(itri.twin(h)))) {
+          itri.flip(h);
+          ++interior_flips;
+        }
+    }
+  }
+}
+
 namespace {
 // a domain whose embedding counts its calls and fails (a Convergence_failure) when `fail` is set
 struct Counting_domain {

@@ -105,7 +105,7 @@ struct Euclidean_delaunay_flip_rule {
         const int o = itri.twin(e);
         if(o < 0 || T::face(o) == T::face(h) || T::face(o) == T::face(t)) return false;
       }
-    } else if(itri.find_halfedge(c, d) >= 0) {
+    } else if(itri.has_edge(c, d)) {
       return false;  // would create a double edge
     }
     if(keep_star && ((*keep_star)[std::size_t(c)] || (*keep_star)[std::size_t(d)] || (*keep_star)[std::size_t(itri.tail(h))] ||

@@ -58,7 +58,7 @@ struct Hyperbolic_delaunay_flip_rule {
     const std::array<double, 3> A = angles_from(itri, h), B = angles_from(itri, t);
     if(A[2] + B[2] <= A[0] + A[1] + B[0] + B[1] + 1e-10) return false;
     const int c = itri.opposite_vertex(h), d = itri.opposite_vertex(t);
-    return c != d && itri.find_halfedge(c, d) < 0;  // no double edge
+    return c != d && !itri.has_edge(c, d);  // no double edge
   }
   double flipped_length(const Intrinsic_triangulation& itri, int h) const
   {

@@ -46,7 +46,7 @@ inline bool metric_delaunay_wants_flip(const Intrinsic_triangulation& itri, int 
 inline bool flip_keeps_orientation(const Intrinsic_triangulation& itri, int h)
 {
   const int a = itri.tail(h), b = itri.head(h), c = itri.opposite_vertex(h), d = itri.opposite_vertex(itri.twin(h));
-  if(itri.find_halfedge(c, d) >= 0) return false;  // the new edge exists already
+  if(itri.has_edge(c, d)) return false;  // the new edge exists already
   auto normal = [&](int p, int q, int r) {
     return Eigen::Vector3d((itri.position(q) - itri.position(p)).cross(itri.position(r) - itri.position(p)));
   };
