@@ -727,7 +727,8 @@ BOOST_AUTO_TEST_CASE(a_long_open_tube_goes_to_cones_with_both_loops)
 
 // A free site that the CVT leaves on a loop's chain of sites blocks the chain's edge; the run is then made
 // again from initial sites drawn with the next seed (Remeshing_result::reseeded says why). Measured on the
-// tube above at 400 vertices: seeds 0 and 6 of 0..7 needed it. Every seed remeshes, and a reseeded output
+// tube above at 400 vertices: seeds 0 and 6 of 0..7 needed it when this was written, one of them at stop 64
+// (the test counts them, it does not fix which). Every seed remeshes, and a reseeded output
 // is the run of the next seed, bit for bit (its conformal embedding the first run's, since stop 64).
 BOOST_AUTO_TEST_CASE(a_site_blocking_a_loop_chain_makes_the_run_start_again_with_the_next_seed)
 {
