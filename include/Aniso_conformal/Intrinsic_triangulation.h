@@ -100,23 +100,10 @@ public:
   std::vector<int> outgoing_halfedges(int v) const
   {
     std::vector<int> out;
-    int h0 = m_out[v];
-    // rotate clockwise to the boundary (or once around)
-    int h = h0;
-    while(true) {
-      int t = m_twin[h];
-      if(t < 0) break;
-      int g = next(t);
-      if(g == h0) break;
-      h = g;
-    }
-    int start = h;
-    do {
+    first_outgoing(v, [&out](int h) {
       out.push_back(h);
-      int p = m_twin[prev(h)];
-      if(p < 0) break;
-      h = p;
-    } while(h != start && out.size() <= m_twin.size());
+      return false;
+    });
     return out;
   }
   /// `true` if `v` lies on the boundary
@@ -150,27 +137,7 @@ public:
   /// the halfedge from `a` to `b`, or -1
   int find_halfedge(int a, int b) const
   {
-    // outgoing_halfedges(a)'s walk, in its order (with a double edge, the same one is found), without
-    // building the list
-    const int h0 = m_out[a];
-    int h = h0;
-    while(true) {
-      const int t = m_twin[h];
-      if(t < 0) break;
-      const int g = next(t);
-      if(g == h0) break;
-      h = g;
-    }
-    const int start = h;
-    std::size_t visited = 0;
-    do {
-      if(head(h) == b) return h;
-      ++visited;
-      const int p = m_twin[prev(h)];
-      if(p < 0) break;
-      h = p;
-    } while(h != start && visited <= m_twin.size());
-    return -1;
+    return first_outgoing(a, [&](int h) { return head(h) == b; });  // with a double edge, the first in that order
   }
   /// @}
 
@@ -406,6 +373,32 @@ public:
   /// @}
 
 private:
+  // The walk of outgoing_halfedges(v): clockwise from v's halfedge to the boundary (or once around), then
+  // counterclockwise from there, until `stop(h)`; returns that h, or -1 when none stops it. find_halfedge()
+  // walks without building the list.
+  template <typename Stop>
+  int first_outgoing(int v, const Stop& stop) const
+  {
+    const int h0 = m_out[v];
+    int h = h0;
+    while(true) {
+      const int t = m_twin[h];
+      if(t < 0) break;
+      const int g = next(t);
+      if(g == h0) break;
+      h = g;
+    }
+    const int start = h;
+    std::size_t visited = 0;
+    do {
+      if(stop(h)) return h;
+      ++visited;
+      const int p = m_twin[prev(h)];
+      if(p < 0) break;
+      h = p;
+    } while(h != start && visited <= m_twin.size());
+    return -1;
+  }
   // makes halfedges x and y twins (y may be -1: a boundary), both of length `length`
   // splits the face of halfedge `e` = (x, y), opposite corner z, at the new vertex `m` on `e`: the face
   // becomes (x, m, z) in place and (m, y, z) is added (returned), joined by the edge m-z (length NaN);

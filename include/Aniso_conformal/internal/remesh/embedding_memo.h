@@ -6,7 +6,6 @@
 
 #include <Aniso_conformal/Exceptions.h>
 #include <Aniso_conformal/Intrinsic_triangulation.h>
-#include <Aniso_conformal/Remeshing_result.h>
 
 #include <cstdint>
 #include <exception>
