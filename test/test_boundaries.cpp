@@ -27,6 +27,7 @@
 #include <set>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,32 @@ AC::Remeshing_result check_remesh(const std::string& name, const AC::Input_surfa
               result.quality.percent_below_30, result.hausdorff_distance_relative);
   if(output) *output = out;
   return result;
+}
+
+// The length of a shortest path from `from` to `to` along the edges of `s`
+double graph_distance(const AC::Input_surface& s, std::size_t from, std::size_t to)
+{
+  const auto& pts = s.points();
+  std::vector<std::vector<std::size_t>> adjacent(pts.size());
+  for(const auto& f : s.faces())
+    for(std::size_t k = 0; k < 3; ++k) adjacent[f[k]].push_back(f[(k + 1) % 3]);
+  std::vector<double> d(pts.size(), 1e300);
+  std::vector<std::pair<double, std::size_t>> heap{{0.0, from}};
+  d[from] = 0;
+  while(!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), std::greater<>());
+    const auto [dv, v] = heap.back();
+    heap.pop_back();
+    if(v == to) return dv;
+    if(dv > d[v]) continue;
+    for(const std::size_t w : adjacent[v])
+      if(dv + (pts[v] - pts[w]).norm() < d[w]) {
+        d[w] = dv + (pts[v] - pts[w]).norm();
+        heap.push_back({d[w], w});
+        std::push_heap(heap.begin(), heap.end(), std::greater<>());
+      }
+  }
+  return d[to];
 }
 
 } // namespace
@@ -409,6 +436,96 @@ BOOST_AUTO_TEST_CASE(torus_with_a_hole_keeps_its_loop_at_100_and_300_vertices)
     BOOST_TEST(r.quality.G_avg > 0.88);
     BOOST_TEST(r.quality.theta_min > 8.0);
   }
+}
+
+// An open tube of k x m quads whose cross-section is an ellipse of semi-axes 1 and `b`, `length` long
+// (a hollow blade when b is small): two boundary loops, each along both faces of the tube
+AC::Input_surface make_flat_tube(int m, int k, double b, double length)
+{
+  std::vector<Eigen::Vector3d> points;
+  std::vector<AC::Input_surface::Face> faces;
+  for(int j = 0; j <= k; ++j)
+    for(int i = 0; i < m; ++i) {
+      const double t = 2 * 3.14159265358979323846 * i / m;
+      points.push_back(Eigen::Vector3d(std::cos(t), b * std::sin(t), length * j / k));
+    }
+  auto at = [m](int i, int j) { return std::size_t(j * m + (i % m)); };
+  for(int j = 0; j < k; ++j)
+    for(int i = 0; i < m; ++i) {
+      faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  return AC::Input_surface(std::move(points), std::move(faces));
+}
+
+BOOST_AUTO_TEST_CASE(a_loop_along_both_faces_of_a_thin_part_gets_a_collar_that_opens_them)
+{
+  // 0.06 thick where the output's edges are about 0.25 long at 300 vertices: a flat patch over a loop
+  // puts its sites on one face 0.06 from those on the other (CGAL's blade.off, a hollow blade: "a site
+  // came too close to the loop" with the curvature metric); the collar (patch_collars.h) opens them
+  const AC::Input_surface tube = make_flat_tube(64, 40, 0.03, 4.0);
+  BOOST_TEST_REQUIRE(tube.boundary_loops().size() == 2u);
+  const double h = AC::internal::estimated_output_edge_length(tube, 300);
+  BOOST_TEST(h > 0.2);
+  BOOST_TEST(h < 0.3);
+  for(const auto& loop : tube.boundary_loops())
+    BOOST_TEST(!AC::internal::thin_loop_pairs(tube.points(), tube.vertex_normals(), loop, h).empty());
+  // a round tube's loops, and a flat tube's at a scale below its thickness, are not thin
+  const AC::Input_surface round = make_flat_tube(64, 40, 1.0, 4.0);
+  for(const auto& loop : round.boundary_loops())
+    BOOST_TEST(AC::internal::thin_loop_pairs(round.points(), round.vertex_normals(), loop, h).empty());
+  for(const auto& loop : tube.boundary_loops())
+    BOOST_TEST(AC::internal::thin_loop_pairs(tube.points(), tube.vertex_normals(), loop, 0.01).empty());
+  BOOST_TEST(AC::internal::close_holes(tube, false).collared_loops == 0u);  // no scale given: no collar
+  const AC::internal::Hole_patches patches = AC::internal::close_holes(tube, false, h);
+  BOOST_TEST(patches.collared_loops == 2u);
+  BOOST_TEST(patches.closed.genus() == 0);
+  BOOST_TEST(patches.closed.boundary_loops().empty());
+  // through the closed surface (shortest paths along its edges), the loop vertices at angles t and -t
+  // (2 * 0.03 sin t apart in space) are at least about the shorter of their distance along the loop and
+  // twice the collar's height (2 h) apart
+  const std::size_t m = 64;
+  const double step = 2 * 3.14159265358979323846 / m;
+  for(std::size_t i : {8u, 16u, 24u}) {  // angles 45, 90 and 135 degrees, on the loop at z = 0
+    double along = 0;                    // the loop's length from angle -t to t through angle 0 or pi
+    const std::size_t k = std::min(i, m / 2 - i);
+    for(std::size_t j = 0; j < 2 * k; ++j) {
+      const double t0 = (i <= m / 4 ? -double(i) : double(m / 2 - k)) * step + double(j) * step;
+      along += (Eigen::Vector2d(std::cos(t0 + step), 0.03 * std::sin(t0 + step)) - Eigen::Vector2d(std::cos(t0), 0.03 * std::sin(t0))).norm();
+    }
+    BOOST_TEST(graph_distance(patches.closed, i, m - i) > 0.9 * std::min(along, 4 * h));
+    // the flat cone's edges join the two faces through its apex, half the loop's mean radius away
+    if(i == 16) BOOST_TEST(graph_distance(AC::internal::close_holes(tube, false).closed, i, m - i) < 0.9 * std::min(along, 4 * h));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_run_blocked_at_a_thin_loop_goes_again_with_collars)
+{
+  // run_again_with_collars_if_a_loop_is_blocked(): a second run only after the loop-blocked failure, and
+  // only on an input with a thin loop; its discarded time counted
+  const AC::Input_surface thin = make_flat_tube(64, 40, 0.03, 4.0), round = make_flat_tube(64, 40, 1.0, 4.0);
+  const std::string blocked = std::string("remesh(): the output does not join sites 4 and 5 of boundary loop 0 by an edge (") +
+                              AC::internal::blocked_loop_reason + ")";
+  AC::Remeshing_result result;
+  std::vector<bool> calls;
+  auto run = [&](bool collars) {
+    calls.push_back(collars);
+    if(!collars) throw AC::Convergence_failure(blocked, 0);
+    return 7;
+  };
+  BOOST_TEST(AC::internal::run_again_with_collars_if_a_loop_is_blocked(thin, 300, result, run) == 7);
+  BOOST_TEST((calls == std::vector<bool>{false, true}));
+  BOOST_TEST(result.discarded_seconds >= 0.0);
+  calls.clear();
+  BOOST_CHECK_THROW(AC::internal::run_again_with_collars_if_a_loop_is_blocked(round, 300, result, run), AC::Convergence_failure);
+  BOOST_TEST((calls == std::vector<bool>{false}));
+  calls.clear();
+  auto other = [&](bool collars) -> int {
+    calls.push_back(collars);
+    throw AC::Convergence_failure("remesh(): the output has 1 inverted or degenerate triangles", 0);
+  };
+  BOOST_CHECK_THROW(AC::internal::run_again_with_collars_if_a_loop_is_blocked(thin, 300, result, other), AC::Convergence_failure);
+  BOOST_TEST((calls == std::vector<bool>{false}));
 }
 
 BOOST_AUTO_TEST_CASE(a_domain_that_does_not_fit_is_refused)

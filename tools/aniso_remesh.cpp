@@ -167,6 +167,9 @@ int run(const aniso_remesh::Options& o, const AC::Input_surface& surface, const 
                 AC::domain_name(result.domain));
     if(result.loop_edges_recovered > 0)
       std::printf("boundary     %zu edges between consecutive sites of a boundary loop recovered by flips\n", result.loop_edges_recovered);
+    if(result.collared_loops > 0)
+      std::printf("boundary     %zu loops along both faces of a part thinner than an output edge closed by a collar first\n",
+                  result.collared_loops);
     if(result.patch_sites_moved > 0)
       std::printf("boundary     %zu free sites cut off into a hole's patch moved onto the longest edge\n", result.patch_sites_moved);
     std::printf("distance     Hausdorff distance to the input %.3g (%.3g of the bounding-box diagonal)\n",

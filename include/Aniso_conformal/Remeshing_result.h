@@ -164,6 +164,11 @@ struct Remeshing_result {
   /// 3) the dual did not join, joined by a sequence of output edge flips (the loop's edges are checked
   /// after; 0 when the dual joined them all, the output then as without the recovery)
   std::size_t loop_edges_recovered = 0;
+  /// boundary loops that run along both faces of a part thinner than an output edge (two loop vertices
+  /// closer than the output's edge length, with normals facing away, more than three times that apart
+  /// along the loop), whose patch begins with a collar along the surface's normals, two output edges
+  /// high (internal/remesh/patch_collars.h); 0 when none
+  std::size_t collared_loops = 0;
   /// free sites the dual left on the patch side of a loop's chain of sites (cut off with the tip of a spike
   /// of the surface narrower than the spacing), moved onto the midpoint of the longest output edge between
   /// two free sites, which they split (internal/remesh/hole_patches.h, remove_patch_triangles())

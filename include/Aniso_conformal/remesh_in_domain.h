@@ -70,7 +70,7 @@ Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMet
   // annulus at 300 measured G_avg 0.69; with it 0.922, the sphere's 0.884)
   if(closed && !surface.boundary_loops().empty() &&
      !((Domain::kind == Parametric_domain::SPHERE || Domain::kind == Parametric_domain::CONE) && surface.is_disk()))
-    start.patches.reset(new Hole_patches(close_holes(surface, options.split_pinched_loops)));
+    start.patches.reset(new Hole_patches(close_holes(surface, options.split_pinched_loops, options.collar_thin_loops ? estimated_output_edge_length(surface, n) : 0.0)));
   const Input_surface& background = start.background(surface);
   if(!Domain::fits(background))
     throw Invalid_input(std::string("remesh(): the ") + domain_name(Domain::kind) + " domain does not fit the input, which is " +
@@ -81,6 +81,7 @@ Pipeline_start start_pipeline(const Input_surface& surface, const AnisotropicMet
   result.domain = Domain::kind;
   result.input_vertices = surface.number_of_vertices();
   result.input_faces = surface.number_of_faces();
+  if(start.patches) result.collared_loops = start.patches->collared_loops;
   // the input's sharp features (issue 15): measured on the output, their time counted as the metric's
   const auto features_start = std::chrono::steady_clock::now();
   start.features = detect_features(surface, options.feature_angle, options.corner_angle, options.feature_edges, options.feature_vertices);
@@ -492,7 +493,13 @@ Remeshed_surface remesh_in_domain_with_sizing(const Input_surface& surface, cons
   typename Visitor_reference<NamedParameters>::type visitor = get_visitor(np);
   Visitor_handle handle(visitor);
   const Remeshing_options options = Remeshing_options::from(np);
-  const auto run = [&](const auto& m) { return run_pipeline<Domain>(surface, m, result, options, handle); };
+  const auto run = [&](const auto& m) {
+    return run_again_with_collars_if_a_loop_is_blocked(surface, options.number_of_vertices, result, [&](bool collars) {
+      Remeshing_options o = options;
+      o.collar_thin_loops = collars;
+      return run_pipeline<Domain>(surface, m, result, o, handle);
+    });
+  };
   const bool curvature = options.curvature_sizing == Curvature_sizing::ALWAYS ||
                          (options.curvature_sizing == Curvature_sizing::CONES && Domain::sizes_by_curvature_by_default);
   if(!options.feature_sizing && !curvature) return run_with_stretch_bound(surface, metric, result, options, run);

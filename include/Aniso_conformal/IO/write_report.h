@@ -172,6 +172,7 @@ inline nlohmann::json report_json(const Remeshing_result& r)
                  {"hausdorff_distance_relative", report_number(r.hausdorff_distance_relative)}};
   if(r.loop_edges_recovered > 0) j["output"]["loop_edges_recovered"] = r.loop_edges_recovered;  // absent: none missing
   if(r.patch_sites_moved > 0) j["output"]["patch_sites_moved"] = r.patch_sites_moved;              // absent: none moved
+  if(r.collared_loops > 0) j["output"]["collared_loops"] = r.collared_loops;                       // absent: none
   j["quality"] = {{"G_min", report_number(q.G_min)},
                   {"G_avg", report_number(q.G_avg)},
                   {"theta_min", report_number(q.theta_min)},

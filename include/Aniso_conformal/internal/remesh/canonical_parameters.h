@@ -73,6 +73,9 @@ struct Remeshing_options {
   // loops pass twice through a point: its holes closed lobe by lobe (close_holes()), its loops' sites
   // not keeping those points as corners (place_loop_sites())
   bool split_pinched_loops = false;
+  // not a named parameter: true in the second run of run_again_with_collars_if_a_loop_is_blocked(): the
+  // loops along both faces of a part thinner than an output edge closed by a collar first (patch_collars.h)
+  bool collar_thin_loops = false;
 
   template <typename NamedParameters>
   static Remeshing_options from(const NamedParameters& np)

@@ -13,6 +13,7 @@
 #include <Aniso_conformal/internal/conformal/newton_solver.h>
 #include <Aniso_conformal/internal/features/edge_recovery_by_flips.h>
 #include <Aniso_conformal/internal/intrinsic/midpoint_split.h>
+#include <Aniso_conformal/internal/remesh/patch_collars.h>
 #include <Aniso_conformal/internal/tensor.h>
 #include <Aniso_conformal/parameters.h>
 #include <Aniso_conformal/refine_background.h>
@@ -77,26 +78,8 @@ struct Hole_patches {
   std::vector<std::size_t> apex;                // per loop, its patch's apex in `closed`
   std::vector<Patch_vertex> patch_vertices;     // the vertices of `closed` from input_vertices on
   std::vector<std::size_t> pinch_vertices;      // sorted: the loop vertices at a pinch (split_loop_at_pinches())
+  std::size_t collared_loops = 0;               // loops closed by a collar and a cone (patch_collars.h)
 };
-
-// `true` if the cone of close_holes() over `loop` (points `pts`, centroid `c`, Newell vector `newell`)
-// folds over itself: some fan triangle (centroid, loop[i], loop[i + 1]), seen along `newell`, turns the
-// other way round the centroid than the loop as a whole, i.e. the loop is not star-shaped about its
-// centroid in its mean plane. Such a cone closes the hole with a crumpled surface: the fan triangles of
-// the folds add their angles at the apex and at the loop vertices where they should cancel (CGAL's
-// lion.off: apex angle sum 647 degrees, loop vertices with 2 pi minus their angle sum from -163 to +284
-// degrees, against at most 74 on the scans that embed), and the flat metric has singularities of that
-// strength on the seam, whose edges cannot flip: its triangles there go flat whatever their size.
-inline bool cone_folds(const std::vector<Eigen::Vector3d>& pts, const std::vector<std::size_t>& loop, const Eigen::Vector3d& c,
-                       const Eigen::Vector3d& newell)
-{
-  const Eigen::Vector3d n = newell.normalized();
-  for(std::size_t i = 0; i < loop.size(); ++i) {
-    const Eigen::Vector3d a = pts[loop[i]] - c, b = pts[loop[(i + 1) % loop.size()]] - c;
-    if(a.cross(b).dot(n) < -1e-12 * a.norm() * b.norm()) return true;  // a radial edge (0 up to rounding) is no fold
-  }
-  return false;
-}
 
 // A hole of the surface (`surface_points`, `surface_faces`) filled by Liepa's method (Liepa 2003, "Filling holes in meshes"; CGAL's
 // triangulate_refine_and_fair_hole(): a triangulation of the loop minimising the worst dihedral angle,
@@ -389,7 +372,7 @@ inline void close_pinched_loop(const std::vector<std::vector<std::size_t>>& piec
 // Only the patches' intrinsic lengths matter (the positions enter the metric edge lengths only), and no
 // output vertex comes from them.
 // \throws Remeshing_failure if a loop spans no area or the closed surface is not valid
-inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = false)
+inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = false, double collar_edge_length = 0)
 {
   const std::vector<std::vector<std::size_t>>& loops = s.boundary_loops();
   std::vector<Eigen::Vector3d> points = s.points();
@@ -397,17 +380,12 @@ inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = fal
   std::vector<std::size_t> apexes;
   std::vector<Patch_vertex> patch_vertices;
   std::vector<std::size_t> pinch_vertices;
+  std::size_t collared = 0;
   for(std::size_t l = 0; l < loops.size(); ++l) {
     const std::vector<std::size_t>& loop = loops[l];
-    Eigen::Vector3d c = Eigen::Vector3d::Zero(), newell = Eigen::Vector3d::Zero();
-    for(std::size_t v : loop) c += s.points()[v];
-    c /= double(loop.size());
-    double radius = 0;
-    for(std::size_t i = 0; i < loop.size(); ++i) {
-      newell += s.points()[loop[i]].cross(s.points()[loop[(i + 1) % loop.size()]]);
-      radius += (s.points()[loop[i]] - c).norm();
-    }
-    radius /= double(loop.size());
+    const Loop_frame frame = loop_frame(s.points(), loop);
+    const Eigen::Vector3d &c = frame.centroid, &newell = frame.newell;
+    const double radius = frame.radius;
     if(!(newell.norm() > 1e-12 * radius * radius) || !(radius > 0))
       throw Remeshing_failure("remesh(): boundary loop " + std::to_string(l) + " (" + std::to_string(loop.size()) +
                               " vertices) spans no area; this version closes each hole with a cone over its loop");
@@ -415,6 +393,23 @@ inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = fal
       split_pinches ? split_loop_at_pinches(loop, l, newell, points, patch_vertices, pinch_vertices) : std::vector<std::vector<std::size_t>>{loop};
     if(pieces.size() > 1) {
       close_pinched_loop(pieces, l, points, faces, patch_vertices, apexes);
+      continue;
+    }
+    // a loop along both faces of a part thinner than an output edge: a collar of rings along the normals,
+    // two output edges high, opens them apart (patch_collars.h), then the cone over its last ring
+    const auto thin = thin_loop_pairs(s.points(), s.vertex_normals(), loop, collar_edge_length);
+    if(!thin.empty()) {
+      const double height = 2 * collar_edge_length;
+      const int rings = int(std::clamp(std::round(height * double(loop.size()) / frame.length), 1.0, 8.0));
+      const std::vector<std::size_t> last = add_patch_collar(loop, s.vertex_normals(), thin, height, rings, points, faces,
+                                                             [&](std::size_t i) { patch_vertices.push_back({l, loop[i], 0.0, true}); });
+      const Loop_frame top = loop_frame(points, last);
+      const std::size_t m = last.size(), apex = points.size();
+      points.push_back(top.newell.norm() > 0 ? Eigen::Vector3d(top.centroid - 0.5 * top.radius * top.newell.normalized()) : top.centroid);
+      patch_vertices.push_back({l, 0, 1.0});
+      apexes.push_back(apex);
+      for(std::size_t i = 0; i < m; ++i) faces.push_back({{last[(i + 1) % m], last[i], apex}});
+      ++collared;
       continue;
     }
     std::vector<Eigen::Vector3d> fill_points;
@@ -451,6 +446,7 @@ inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = fal
   std::sort(pinch_vertices.begin(), pinch_vertices.end());
   pinch_vertices.erase(std::unique(pinch_vertices.begin(), pinch_vertices.end()), pinch_vertices.end());
   p.pinch_vertices = std::move(pinch_vertices);
+  p.collared_loops = collared;
   if(p.closed.genus() != s.genus() || !p.closed.boundary_loops().empty())
     throw Internal_error("close_holes(): the closed surface is " + p.closed.topology_description() + ", the input " +
                          s.topology_description());
