@@ -501,31 +501,52 @@ BOOST_AUTO_TEST_CASE(a_loop_along_both_faces_of_a_thin_part_gets_a_collar_that_o
 
 BOOST_AUTO_TEST_CASE(a_run_blocked_at_a_thin_loop_goes_again_with_collars)
 {
-  // run_again_with_collars_if_a_loop_is_blocked(): a second run only after the loop-blocked failure, and
-  // only on an input with a thin loop; its discarded time counted
-  const AC::Input_surface thin = make_flat_tube(64, 40, 0.03, 4.0), round = make_flat_tube(64, 40, 1.0, 4.0);
-  const std::string blocked = std::string("remesh(): the output does not join sites 4 and 5 of boundary loop 0 by an edge (") +
-                              AC::internal::blocked_loop_reason + ")";
-  AC::Remeshing_result result;
-  std::vector<bool> calls;
-  auto run = [&](bool collars) {
-    calls.push_back(collars);
-    if(!collars) throw AC::Convergence_failure(blocked, 0);
-    return 7;
-  };
-  BOOST_TEST(AC::internal::run_again_with_collars_if_a_loop_is_blocked(thin, 300, result, run) == 7);
-  BOOST_TEST((calls == std::vector<bool>{false, true}));
-  BOOST_TEST(result.discarded_seconds >= 0.0);
-  calls.clear();
-  BOOST_CHECK_THROW(AC::internal::run_again_with_collars_if_a_loop_is_blocked(round, 300, result, run), AC::Convergence_failure);
-  BOOST_TEST((calls == std::vector<bool>{false}));
-  calls.clear();
-  auto other = [&](bool collars) -> int {
-    calls.push_back(collars);
-    throw AC::Convergence_failure("remesh(): the output has 1 inverted or degenerate triangles", 0);
-  };
-  BOOST_CHECK_THROW(AC::internal::run_again_with_collars_if_a_loop_is_blocked(thin, 300, result, other), AC::Convergence_failure);
-  BOOST_TEST((calls == std::vector<bool>{false}));
+  // run_again_with_collars_if_a_loop_is_blocked(): a second run only after a Blocked_loop_failure, and
+  // only when the loop it names is thin: a tube flat (0.03) at one end and round at the other
+  std::vector<Eigen::Vector3d> points;
+  {
+    const AC::Input_surface flat = make_flat_tube(64, 40, 0.03, 4.0);
+    for(const auto& p : flat.points()) points.push_back(Eigen::Vector3d(p.x(), p.y() / 0.03 * (0.03 + 0.97 * p.z() / 4.0), p.z()));
+    const AC::Input_surface tapered(points, std::vector<AC::Input_surface::Face>(flat.faces().begin(), flat.faces().end()));
+    const double h = AC::internal::estimated_output_edge_length(tapered, 300);
+    std::vector<std::size_t> thin_loops, round_loops;
+    for(std::size_t l = 0; l < tapered.boundary_loops().size(); ++l)
+      (AC::internal::thin_loop_pairs(tapered.points(), tapered.vertex_normals(), tapered.boundary_loops()[l], h).empty() ? round_loops
+                                                                                                                         : thin_loops)
+        .push_back(l);
+    BOOST_TEST_REQUIRE(thin_loops.size() == 1u);
+    BOOST_TEST_REQUIRE(round_loops.size() == 1u);
+    AC::Remeshing_result result;
+    std::vector<bool> calls;
+    for(const std::size_t blocked : {thin_loops[0], round_loops[0]}) {
+      calls.clear();
+      auto run = [&](bool collars) {
+        calls.push_back(collars);
+        if(!collars)
+          throw AC::internal::Blocked_loop_failure(std::string("remesh(): the output does not join sites 4 and 5 of boundary loop ") +
+                                                       std::to_string(blocked) + " by an edge (" + AC::internal::blocked_loop_reason + ")",
+                                                   blocked);
+        return 7;
+      };
+      if(blocked == thin_loops[0]) {
+        BOOST_TEST(AC::internal::run_again_with_collars_if_a_loop_is_blocked(tapered, 300, result, run) == 7);
+        BOOST_TEST((calls == std::vector<bool>{false, true}));
+        BOOST_TEST(result.discarded_seconds >= 0.0);
+      } else {
+        BOOST_CHECK_THROW(AC::internal::run_again_with_collars_if_a_loop_is_blocked(tapered, 300, result, run),
+                          AC::internal::Blocked_loop_failure);
+        BOOST_TEST((calls == std::vector<bool>{false}));
+      }
+    }
+    // any other failure is thrown on without a second run
+    calls.clear();
+    auto other = [&](bool collars) -> int {
+      calls.push_back(collars);
+      throw AC::Convergence_failure("remesh(): the output has 1 inverted or degenerate triangles", 0);
+    };
+    BOOST_CHECK_THROW(AC::internal::run_again_with_collars_if_a_loop_is_blocked(tapered, 300, result, other), AC::Convergence_failure);
+    BOOST_TEST((calls == std::vector<bool>{false}));
+  }
 }
 
 BOOST_AUTO_TEST_CASE(a_domain_that_does_not_fit_is_refused)

@@ -247,6 +247,14 @@ inline std::size_t recover_loop_edges(const Input_surface& closed, Remeshed_surf
 // a free site sits on the chain so close that no flip recovers the edge past it.
 constexpr const char* blocked_loop_reason = "a site came too close to the loop";
 
+// The failure of remove_patch_triangles() when two consecutive sites of boundary loop `loop` (an index
+// into the input's Input_surface::boundary_loops()) are not joined by an output edge
+class Blocked_loop_failure : public Convergence_failure {
+public:
+  Blocked_loop_failure(const std::string& what, std::size_t loop) : Convergence_failure(what, 0), loop(loop) {}
+  std::size_t loop;
+};
+
 // Runs `run(false)`; when `loops` and it fails because a free site blocks a loop's chain edge (the
 // Convergence_failure of remove_patch_triangles()), runs `run(true)` once (the caller draws the CVT's
 // initial sites with the next seed: another CVT, whose sites leave the chain alone), with the first
@@ -263,7 +271,7 @@ auto run_again_if_a_loop_is_blocked(bool loops, const Run& run, std::string& why
   try {
     return run(false);
   } catch(const Remeshing_failure& e) {
-    if(!any_failure && (!dynamic_cast<const Convergence_failure*>(&e) || std::string(e.what()).find(blocked_loop_reason) == std::string::npos))
+    if(!any_failure && !dynamic_cast<const Blocked_loop_failure*>(&e))
       throw;
     why = e.what();
   }
@@ -271,9 +279,9 @@ auto run_again_if_a_loop_is_blocked(bool loops, const Run& run, std::string& why
   return run(true);
 }
 
-// Runs `run(false)`; when it fails because a free site blocks a loop's chain edge (the Convergence_failure
-// of remove_patch_triangles(), after every run of run_pipeline()) and a loop of `surface` runs along both
-// faces of a part thinner than the output's edge length for `n` vertices (thin_loop_pairs()), runs
+// Runs `run(false)`; when it fails because a free site blocks a loop's chain edge (the Blocked_loop_failure
+// of remove_patch_triangles(), after every run of run_pipeline()) and that loop of `surface` runs along
+// both faces of a part thinner than the output's edge length for `n` vertices (thin_loop_pairs()), runs
 // `run(true)` (the caller closes those loops by a collar first, close_holes()), the first failure's wall
 // time added to `result.discarded_seconds` (which the second run starts afresh). Otherwise, or if the
 // second run fails too, the failure is thrown on. (Always closing thin loops so changed outputs that
@@ -286,13 +294,11 @@ auto run_again_with_collars_if_a_loop_is_blocked(const Input_surface& surface, s
   const auto t0 = std::chrono::steady_clock::now();
   try {
     return run(false);
-  } catch(const Convergence_failure& e) {
-    if(std::string(e.what()).find(blocked_loop_reason) == std::string::npos) throw;
-    const double h = estimated_output_edge_length(surface, n);
-    bool thin = false;
-    for(const auto& loop : surface.boundary_loops())
-      thin = thin || !thin_loop_pairs(surface.points(), surface.vertex_normals(), loop, h, 1).empty();
-    if(!thin) throw;
+  } catch(const Blocked_loop_failure& e) {
+    const auto& loops = surface.boundary_loops();
+    if(e.loop >= loops.size() ||
+       thin_loop_pairs(surface.points(), surface.vertex_normals(), loops[e.loop], estimated_output_edge_length(surface, n), 1).empty())
+      throw;
   }
   const double discarded = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   auto out = run(true);
@@ -333,10 +339,10 @@ inline std::pair<std::size_t, std::size_t> remove_patch_triangles(Remeshed_surfa
       const std::size_t a = first[l] + j, b = first[l] + (j + 1) % k;
       const auto inside = face_of.find({a, b}), outside = face_of.find({b, a});
       if(inside == face_of.end() || outside == face_of.end())
-        throw Convergence_failure("remesh(): the output does not join sites " + std::to_string(j) + " and " +
-                                      std::to_string((j + 1) % k) + " of boundary loop " + std::to_string(l) +
-                                      " by an edge (" + blocked_loop_reason + ")",
-                                  0);
+        throw Blocked_loop_failure("remesh(): the output does not join sites " + std::to_string(j) + " and " +
+                                       std::to_string((j + 1) % k) + " of boundary loop " + std::to_string(l) +
+                                       " by an edge (" + blocked_loop_reason + ")",
+                                   l);
       seam[{std::min(a, b), std::max(a, b)}] = 1;
       seeds.push_back(outside->second);
     }
