@@ -356,6 +356,21 @@ inline void close_pinched_loop(const std::vector<std::vector<std::size_t>>& piec
   }
 }
 
+// Adds to loop `l`'s patch the cone over `ring` (vertices of `points` in the loop's orientation; `frame`
+// its loop_frame()): an apex above the ring's centroid at half its mean radius, then one fan of triangles.
+// The patch face (b, a, apex) runs along the ring's edge a -> b backwards: its normal is about -newell,
+// and the apex goes that way (onto the centroid if the ring spans no area).
+inline void add_cone_patch(const std::vector<std::size_t>& ring, const Loop_frame& frame, std::size_t l, std::vector<Eigen::Vector3d>& points,
+                           std::vector<Input_surface::Face>& faces, std::vector<Patch_vertex>& patch_vertices,
+                           std::vector<std::size_t>& apexes)
+{
+  const std::size_t m = ring.size(), apex = points.size();
+  points.push_back(frame.newell.norm() > 0 ? Eigen::Vector3d(frame.centroid - 0.5 * frame.radius * frame.newell.normalized()) : frame.centroid);
+  patch_vertices.push_back({l, 0, 1.0});
+  apexes.push_back(apex);
+  for(std::size_t i = 0; i < m; ++i) faces.push_back({{ring[(i + 1) % m], ring[i], apex}});
+}
+
 // Closes each boundary loop of `s` with a virtual patch, so that the closed surface has the input's genus:
 // - a cone: its apex above the loop's centroid, at half the loop's mean radius, on the side the patch's
 //   orientation (consistent with the surface's) points to, one fan of triangles from the apex (cutting it
@@ -403,12 +418,7 @@ inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = fal
       const int rings = int(std::clamp(std::round(height * double(loop.size()) / frame.length), 1.0, 8.0));
       const std::vector<std::size_t> last = add_patch_collar(loop, s.vertex_normals(), thin, height, rings, points, faces,
                                                              [&](std::size_t i) { patch_vertices.push_back({l, loop[i], 0.0, true}); });
-      const Loop_frame top = loop_frame(points, last);
-      const std::size_t m = last.size(), apex = points.size();
-      points.push_back(top.newell.norm() > 0 ? Eigen::Vector3d(top.centroid - 0.5 * top.radius * top.newell.normalized()) : top.centroid);
-      patch_vertices.push_back({l, 0, 1.0});
-      apexes.push_back(apex);
-      for(std::size_t i = 0; i < m; ++i) faces.push_back({{last[(i + 1) % m], last[i], apex}});
+      add_cone_patch(last, loop_frame(points, last), l, points, faces, patch_vertices, apexes);
       ++collared;
       continue;
     }
@@ -425,14 +435,7 @@ inline Hole_patches close_holes(const Input_surface& s, bool split_pinches = fal
       faces.insert(faces.end(), fill_faces.begin(), fill_faces.end());
       continue;
     }
-    // the patch face (b, a, apex) runs along the loop edge a -> b of the surface backwards: its normal is
-    // about -newell, and the apex goes that way
-    const Eigen::Vector3d top = c - 0.5 * radius * newell.normalized();
-    const std::size_t m = loop.size(), apex = points.size();
-    points.push_back(top);
-    patch_vertices.push_back({l, 0, 1.0});
-    apexes.push_back(apex);
-    for(std::size_t i = 0; i < m; ++i) faces.push_back({{loop[(i + 1) % m], loop[i], apex}});
+    add_cone_patch(loop, frame, l, points, faces, patch_vertices, apexes);
   }
   Hole_patches p{[&] {
                     try {
